@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 namespace fleetmap::core {
@@ -12,21 +13,18 @@ int8_t Quantize(float log_odds) {
   return static_cast<int8_t>(std::clamp(q, -127.0f, 127.0f));
 }
 
-template <typename CellFn>
-void ForEachCell(const CellWindow& w, CellFn fn) {
-  for (int y = w.y0; y < w.y0 + w.height; ++y)
-    for (int x = w.x0; x < w.x0 + w.width; ++x) fn(CellIndex{x, y});
-}
-
 }  // namespace
 
 bool IsValidCellPacking(uint8_t code) { return code <= uint8_t(CellPacking::kLogOddsInt8); }
 
 const char* CellPackingName(CellPacking packing) {
   switch (packing) {
-    case CellPacking::kTriState2Bit: return "tristate2";
-    case CellPacking::kTriState8Bit: return "tristate8";
-    case CellPacking::kLogOddsInt8: return "logodds8";
+    case CellPacking::kTriState2Bit:
+      return "tristate2";
+    case CellPacking::kTriState8Bit:
+      return "tristate8";
+    case CellPacking::kLogOddsInt8:
+      return "logodds8";
   }
   return "invalid";
 }
@@ -40,19 +38,24 @@ std::vector<uint8_t> PackCells(const OccupancyGrid& grid, const CellWindow& wind
   assert(grid.geometry().Contains(window));
   std::vector<uint8_t> out(static_cast<size_t>(PackedSize(packing, window.num_cells())), 0);
   const TriStateClassifier classify(thresholds);
-  const std::vector<float>& cells = grid.cells();
-  size_t i = 0;
-  ForEachCell(window, [&](const CellIndex& c) {
-    const float l = cells[grid.geometry().Index(c)];
+  size_t i = 0;  // cell number inside the window
+  // Row by row with the packing decided outside the inner loop: this runs over whole maps
+  // for every keyframe and delta.
+  for (int y = window.y0; y < window.y0 + window.height; ++y) {
+    const float* row = grid.cells().data() + grid.geometry().Index({window.x0, y});
     switch (packing) {
       case CellPacking::kTriState2Bit:
-        out[i / 4] |= static_cast<uint8_t>(uint8_t(classify(l)) << (2 * (i % 4)));
+        for (int x = 0; x < window.width; ++x, ++i)
+          out[i >> 2] |= static_cast<uint8_t>(uint8_t(classify(row[x])) << (2 * (i & 3)));
         break;
-      case CellPacking::kTriState8Bit: out[i] = uint8_t(classify(l)); break;
-      case CellPacking::kLogOddsInt8: out[i] = static_cast<uint8_t>(Quantize(l)); break;
+      case CellPacking::kTriState8Bit:
+        for (int x = 0; x < window.width; ++x, ++i) out[i] = uint8_t(classify(row[x]));
+        break;
+      case CellPacking::kLogOddsInt8:
+        for (int x = 0; x < window.width; ++x, ++i) out[i] = static_cast<uint8_t>(Quantize(row[x]));
+        break;
     }
-    ++i;
-  });
+  }
   return out;
 }
 
@@ -63,21 +66,22 @@ Result<PackedValues> UnpackCells(const uint8_t* packed, int64_t packed_size, Cel
                     std::to_string(num_cells) + " cells");
   }
   PackedValues values(static_cast<size_t>(num_cells));
+  if (packing == CellPacking::kTriState2Bit) {
+    for (int64_t i = 0; i < num_cells; ++i)
+      values[i] = int8_t((packed[i >> 2] >> (2 * (i & 3))) & 3);
+  } else {
+    std::memcpy(values.data(), packed, static_cast<size_t>(num_cells));
+  }
+  // Reject codes no encoder writes, so corrupt input never becomes a plausible map.
+  const int8_t lowest = packing == CellPacking::kLogOddsInt8 ? -127 : 0;
+  const int8_t highest = packing == CellPacking::kLogOddsInt8 ? 127 : 2;
   for (int64_t i = 0; i < num_cells; ++i) {
-    int v;
-    if (packing == CellPacking::kTriState2Bit) {
-      v = (packed[i / 4] >> (2 * (i % 4))) & 3;
-    } else {
-      v = static_cast<int8_t>(packed[i]);
+    if (values[i] < lowest || values[i] > highest) {
+      return DataLoss(std::string(packing == CellPacking::kLogOddsInt8
+                                      ? "log-odds quantum "
+                                      : "invalid tri-state code ") +
+                      std::to_string(values[i]) + " at cell " + std::to_string(i));
     }
-    if (packing != CellPacking::kLogOddsInt8 && (v < 0 || v > 2)) {
-      return DataLoss("invalid tri-state code " + std::to_string(v) + " at cell " +
-                      std::to_string(i));
-    }
-    if (packing == CellPacking::kLogOddsInt8 && v == -128) {
-      return DataLoss("log-odds quantum -128 is never written (cell " + std::to_string(i) + ")");
-    }
-    values[static_cast<size_t>(i)] = static_cast<int8_t>(v);
   }
   return values;
 }
@@ -86,15 +90,19 @@ void WriteCells(const PackedValues& values, CellPacking packing, const CellWindo
                 OccupancyGrid& grid) {
   assert(grid.geometry().Contains(window));
   assert(static_cast<int64_t>(values.size()) == window.num_cells());
-  size_t i = 0;
-  ForEachCell(window, [&](const CellIndex& c) {
-    const int8_t v = values[i++];
+  float canonical[3];
+  for (int s = 0; s < 3; ++s) canonical[s] = grid.CanonicalLogOdds(static_cast<CellState>(s));
+  const LogOddsLimits& limits = grid.limits();
+  const int8_t* v = values.data();
+  for (int y = window.y0; y < window.y0 + window.height; ++y) {
+    float* row = grid.mutable_cells().data() + grid.geometry().Index({window.x0, y});
     if (packing == CellPacking::kLogOddsInt8) {
-      grid.SetLogOdds(c, v * kLogOddsQuantum);
+      for (int x = 0; x < window.width; ++x, ++v)
+        row[x] = std::clamp(*v * kLogOddsQuantum, limits.min_log_odds, limits.max_log_odds);
     } else {
-      grid.SetState(c, static_cast<CellState>(v));
+      for (int x = 0; x < window.width; ++x, ++v) row[x] = canonical[*v];
     }
-  });
+  }
 }
 
 }  // namespace fleetmap::core

@@ -3,6 +3,7 @@
 #include <zlib.h>
 #include <zstd.h>
 
+#include <memory>
 #include <string>
 
 #include "core/byte_io.h"
@@ -13,13 +14,28 @@ namespace {
 
 constexpr uint8_t kMagic[4] = {'F', 'M', 'C', 'F'};
 
+// zstd contexts cost more to create than a 64 x 64 tile costs to compress, so each thread
+// keeps one of each for its lifetime.
+ZSTD_CCtx* CompressionContext() {
+  thread_local std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> ctx(ZSTD_createCCtx(),
+                                                                      ZSTD_freeCCtx);
+  return ctx.get();
+}
+ZSTD_DCtx* DecompressionContext() {
+  thread_local std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> ctx(ZSTD_createDCtx(),
+                                                                      ZSTD_freeDCtx);
+  return ctx.get();
+}
+
 std::vector<uint8_t> Compress(const std::vector<uint8_t>& raw, Compression c, int level) {
   std::vector<uint8_t> out;
   switch (c) {
-    case Compression::kNone: return raw;
+    case Compression::kNone:
+      return raw;
     case Compression::kZstd: {
       out.resize(ZSTD_compressBound(raw.size()));
-      const size_t n = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), level);
+      const size_t n = ZSTD_compressCCtx(CompressionContext(), out.data(), out.size(), raw.data(),
+                                         raw.size(), level);
       assert(!ZSTD_isError(n) && "zstd cannot fail with a bound-sized output");
       out.resize(n);
       return out;
@@ -55,7 +71,8 @@ Result<std::vector<uint8_t>> Decompress(const uint8_t* in, size_t size, Compress
         return DataLoss("zstd frame declares " + std::to_string(declared) + " bytes, header " +
                         std::to_string(expected));
       }
-      const size_t n = ZSTD_decompress(out.data(), out.size(), in, size);
+      const size_t n =
+          ZSTD_decompressDCtx(DecompressionContext(), out.data(), out.size(), in, size);
       if (ZSTD_isError(n)) return DataLoss(std::string("zstd: ") + ZSTD_getErrorName(n));
       if (n != expected) return DataLoss("zstd payload decompressed to the wrong size");
       return out;
@@ -113,17 +130,19 @@ Status CheckHeader(const FrameHeader& h, size_t payload_available, const DecodeL
 
 const char* CompressionName(Compression compression) {
   switch (compression) {
-    case Compression::kNone: return "none";
-    case Compression::kZstd: return "zstd";
-    case Compression::kZlib: return "zlib";
+    case Compression::kNone:
+      return "none";
+    case Compression::kZstd:
+      return "zstd";
+    case Compression::kZlib:
+      return "zlib";
   }
   return "invalid";
 }
 
 std::vector<uint8_t> EncodeWindow(const OccupancyGrid& grid, const CellWindow& window,
                                   const CodecOptions& options) {
-  const std::vector<uint8_t> packed =
-      PackCells(grid, window, options.packing, options.thresholds);
+  const std::vector<uint8_t> packed = PackCells(grid, window, options.packing, options.thresholds);
   const std::vector<uint8_t> payload = Compress(packed, options.compression, options.level);
   std::vector<uint8_t> frame;
   frame.reserve(kCodecHeaderBytes + payload.size() + kCodecTrailerBytes);

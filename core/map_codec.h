@@ -45,8 +45,8 @@ struct CodecOptions {
 // Limits a decoder imposes on frames from outside, so that a frame cannot make it allocate
 // more than the caller expects.
 struct DecodeLimits {
-  int64_t max_cells = kMaxGridCells;       // width * height of one frame
-  size_t max_frame_bytes = 64u << 20;      // whole frame, header and trailer included
+  int64_t max_cells = kMaxGridCells;   // width * height of one frame
+  size_t max_frame_bytes = 64u << 20;  // whole frame, header and trailer included
 };
 
 // Encodes `window` (inside the grid) of `grid`.

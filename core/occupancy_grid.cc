@@ -25,9 +25,12 @@ CellState OccupancyGrid::state(const CellIndex& c, const OccupancyThresholds& t)
 
 float OccupancyGrid::CanonicalLogOdds(CellState state) const {
   switch (state) {
-    case CellState::kOccupied: return limits_.max_log_odds;
-    case CellState::kFree: return limits_.min_log_odds;
-    case CellState::kUnknown: break;
+    case CellState::kOccupied:
+      return limits_.max_log_odds;
+    case CellState::kFree:
+      return limits_.min_log_odds;
+    case CellState::kUnknown:
+      break;
   }
   return 0.0f;
 }
@@ -38,8 +41,7 @@ void OccupancyGrid::SetState(const CellIndex& c, CellState state) {
 
 int64_t OccupancyGrid::CountState(CellState state, const OccupancyThresholds& t) const {
   const TriStateClassifier classify(t);
-  return std::count_if(cells_.begin(), cells_.end(),
-                       [&](float l) { return classify(l) == state; });
+  return std::count_if(cells_.begin(), cells_.end(), [&](float l) { return classify(l) == state; });
 }
 
 TriStateClassifier::TriStateClassifier(const OccupancyThresholds& t)

@@ -44,8 +44,7 @@ bool Pose2::IsFinite() const {
 
 std::string Pose2::ToString() const {
   char buf[96];
-  std::snprintf(buf, sizeof(buf), "(%.3f m, %.3f m, %.2f deg)", x_m, y_m,
-                theta_rad * 180.0 / M_PI);
+  std::snprintf(buf, sizeof(buf), "(%.3f m, %.3f m, %.2f deg)", x_m, y_m, theta_rad * 180.0 / M_PI);
   return buf;
 }
 

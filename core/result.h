@@ -42,7 +42,9 @@ class Status {
 };
 
 inline Status OkStatus() { return Status(); }
-inline Status InvalidArgument(std::string m) { return {StatusCode::kInvalidArgument, std::move(m)}; }
+inline Status InvalidArgument(std::string m) {
+  return {StatusCode::kInvalidArgument, std::move(m)};
+}
 inline Status DataLoss(std::string m) { return {StatusCode::kDataLoss, std::move(m)}; }
 inline Status OutOfRange(std::string m) { return {StatusCode::kOutOfRange, std::move(m)}; }
 inline Status NotFound(std::string m) { return {StatusCode::kNotFound, std::move(m)}; }
@@ -57,7 +59,7 @@ inline Status FailedPrecondition(std::string m) {
 template <typename T>
 class Result {
  public:
-  Result(T value) : data_(std::move(value)) {}  // NOLINT: implicit like StatusOr
+  Result(T value) : data_(std::move(value)) {}        // NOLINT: implicit like StatusOr
   Result(Status status) : data_(std::move(status)) {  // NOLINT
     assert(!std::get<Status>(data_).ok() && "Result needs a value or an error");
   }
@@ -67,9 +69,18 @@ class Result {
     static const Status kOk;
     return ok() ? kOk : std::get<Status>(data_);
   }
-  const T& value() const& { assert(ok()); return std::get<T>(data_); }
-  T& value() & { assert(ok()); return std::get<T>(data_); }
-  T&& value() && { assert(ok()); return std::get<T>(std::move(data_)); }
+  const T& value() const& {
+    assert(ok());
+    return std::get<T>(data_);
+  }
+  T& value() & {
+    assert(ok());
+    return std::get<T>(data_);
+  }
+  T&& value() && {
+    assert(ok());
+    return std::get<T>(std::move(data_));
+  }
   const T& operator*() const& { return value(); }
   T& operator*() & { return value(); }
   const T* operator->() const { return &value(); }
@@ -82,8 +93,8 @@ class Result {
 }  // namespace fleetmap::core
 
 // Returns the status from the enclosing function when `expr` (a Status) is not ok.
-#define FLEETMAP_RETURN_IF_ERROR(expr)                          \
-  do {                                                          \
-    ::fleetmap::core::Status fleetmap_status_ = (expr);         \
-    if (!fleetmap_status_.ok()) return fleetmap_status_;        \
+#define FLEETMAP_RETURN_IF_ERROR(expr)                   \
+  do {                                                   \
+    ::fleetmap::core::Status fleetmap_status_ = (expr);  \
+    if (!fleetmap_status_.ok()) return fleetmap_status_; \
   } while (0)

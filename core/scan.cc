@@ -21,13 +21,14 @@ Status LaserScan::Validate() const {
     return InvalidArgument("scan needs 0 <= range_min_m < range_max_m");
   }
   if (ranges_m.empty()) return InvalidArgument("scan has no beams");
-  if (std::abs(angle_increment_rad) * static_cast<double>(ranges_m.size() - 1) > 2.0 * M_PI + 1e-6) {
+  if (std::abs(angle_increment_rad) * static_cast<double>(ranges_m.size() - 1) >
+      2.0 * M_PI + 1e-6) {
     return InvalidArgument("scan of " + std::to_string(ranges_m.size()) +
                            " beams spans more than 360 degrees");
   }
   if (!intensities.empty() && intensities.size() != ranges_m.size()) {
-    return InvalidArgument("scan has " + std::to_string(intensities.size()) +
-                           " intensities for " + std::to_string(ranges_m.size()) + " ranges");
+    return InvalidArgument("scan has " + std::to_string(intensities.size()) + " intensities for " +
+                           std::to_string(ranges_m.size()) + " ranges");
   }
   return OkStatus();
 }

@@ -1,9 +1,25 @@
 #include "core/tile_delta.h"
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 namespace fleetmap::core {
+namespace {
+
+// Raw cell comparison, row by row: most tiles of a delta are untouched and this rules them
+// out without packing them.
+bool CellsDiffer(const OccupancyGrid& a, const OccupancyGrid& b, const CellWindow& w) {
+  for (int y = w.y0; y < w.y0 + w.height; ++y) {
+    const int64_t i = a.geometry().Index({w.x0, y});
+    if (std::memcmp(a.cells().data() + i, b.cells().data() + i, sizeof(float) * w.width) != 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
 
 Status TileOptions::Validate() const {
   if (tile_size_cells < 4 || tile_size_cells > 4096) {
@@ -27,8 +43,7 @@ CellWindow TileLayout::Window(const TileIndex& t) const {
   return {x0, y0, std::min(tile_size_, width_ - x0), std::min(tile_size_, height_ - y0)};
 }
 
-std::vector<EncodedTile> EncodeChangedTiles(const OccupancyGrid& before,
-                                            const OccupancyGrid& after,
+std::vector<EncodedTile> EncodeChangedTiles(const OccupancyGrid& before, const OccupancyGrid& after,
                                             const TileOptions& options) {
   assert(before.geometry() == after.geometry());
   const TileLayout layout(after.geometry(), options.tile_size_cells);
@@ -37,6 +52,7 @@ std::vector<EncodedTile> EncodeChangedTiles(const OccupancyGrid& before,
   for (int i = 0; i < layout.num_tiles(); ++i) {
     const TileIndex t = layout.FromLinear(i);
     const CellWindow w = layout.Window(t);
+    if (!CellsDiffer(before, after, w)) continue;
     // Compare in the packing's terms: a change below its resolution is no change.
     if (PackCells(before, w, codec.packing, codec.thresholds) ==
         PackCells(after, w, codec.packing, codec.thresholds)) {

@@ -43,8 +43,7 @@ struct EncodedTile {
 };
 
 // Tiles of `after` whose packed cells differ from `before` (same geometry required).
-std::vector<EncodedTile> EncodeChangedTiles(const OccupancyGrid& before,
-                                            const OccupancyGrid& after,
+std::vector<EncodedTile> EncodeChangedTiles(const OccupancyGrid& before, const OccupancyGrid& after,
                                             const TileOptions& options = {});
 // Every tile of `grid`: a keyframe.
 std::vector<EncodedTile> EncodeAllTiles(const OccupancyGrid& grid, const TileOptions& options = {});

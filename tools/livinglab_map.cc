@@ -64,10 +64,14 @@ core::OccupancyGrid MakeLivingLabMap(const LivingLabOptions& o) {
     cv::ellipse(img, c, axes, 0, 0, 360, uint8_t(CellState::kOccupied), 2);
   }
   // A rack along the top wall, with a gap, as halls have.
-  DrawSolidRect(img, cv::Rect(Cells(12.0, res), img.rows - wall - Cells(1.2, res),
-                              Cells(14.0, res), Cells(1.2, res)), 2);
-  DrawSolidRect(img, cv::Rect(Cells(30.0, res), img.rows - wall - Cells(1.2, res),
-                              Cells(14.0, res), Cells(1.2, res)), 2);
+  DrawSolidRect(img,
+                cv::Rect(Cells(12.0, res), img.rows - wall - Cells(1.2, res), Cells(14.0, res),
+                         Cells(1.2, res)),
+                2);
+  DrawSolidRect(img,
+                cv::Rect(Cells(30.0, res), img.rows - wall - Cells(1.2, res), Cells(14.0, res),
+                         Cells(1.2, res)),
+                2);
   CopyStates(img, grid);
   return grid;
 }

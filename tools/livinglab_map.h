@@ -8,11 +8,11 @@
 namespace fleetmap::tools {
 
 struct LivingLabOptions {
-  double length_m = 60.0;       // hall extent along x
-  double width_m = 18.0;        // hall extent along y
-  double resolution_m = 0.05;   // cell size
+  double length_m = 60.0;      // hall extent along x
+  double width_m = 18.0;       // hall extent along y
+  double resolution_m = 0.05;  // cell size
   double wall_thickness_m = 0.2;
-  int picking_stations = 4;     // ellipses along the hall's centre line
+  int picking_stations = 4;  // ellipses along the hall's centre line
 };
 
 core::OccupancyGrid MakeLivingLabMap(const LivingLabOptions& options = {});

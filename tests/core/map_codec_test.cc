@@ -33,8 +33,7 @@ void PutU32(std::vector<uint8_t>& f, size_t offset, uint32_t v) {
   for (int i = 0; i < 4; ++i) f[offset + i] = static_cast<uint8_t>(v >> (8 * i));
 }
 
-class MapCodecRoundTrip
-    : public ::testing::TestWithParam<std::tuple<CellPacking, Compression>> {};
+class MapCodecRoundTrip : public ::testing::TestWithParam<std::tuple<CellPacking, Compression>> {};
 
 TEST_P(MapCodecRoundTrip, WindowSurvives) {
   const auto [packing, compression] = GetParam();

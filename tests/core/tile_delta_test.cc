@@ -31,7 +31,8 @@ TEST(TileDeltaTest, DeltaHoldsOnlyTouchedTilesAndReproducesTheNewGrid) {
   const OccupancyGrid before = Hall();
   OccupancyGrid after = before;
   for (int y = 60; y < 70; ++y)
-    for (int x = 60; x < 70; ++x) after.SetState({x, y}, CellState::kOccupied);  // tiles (0..1, 0..1)
+    for (int x = 60; x < 70; ++x)
+      after.SetState({x, y}, CellState::kOccupied);  // tiles (0..1, 0..1)
   const auto delta = EncodeChangedTiles(before, after);
   ASSERT_EQ(delta.size(), 4u);
   OccupancyGrid receiver = before;

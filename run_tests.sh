@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs what is missing, configures, builds and runs the whole test suite with ctest.
+# The exit code is the suite's.
+#   ./run_tests.sh              RelWithDebInfo build in build/
+#   ./run_tests.sh --sanitize   ASan + UBSan build of the tests in build-asan/
+# Environment: CI=true turns warnings into errors; FLEETMAP_JOBS sets build parallelism.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+build_dir=build
+args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+if [[ ${1:-} == --sanitize ]]; then
+  build_dir=build-asan
+  args+=(-DFLEETMAP_SANITIZE=ON -DFLEETMAP_BUILD_BENCH=OFF -DFLEETMAP_BUILD_JAR=OFF)
+elif [[ -n ${1:-} ]]; then
+  sed -n '2,7p' "$0"
+  [[ $1 == --help || $1 == -h ]] && exit 0
+  exit 2
+fi
+[[ ${CI:-} == true ]] && args+=(-DFLEETMAP_WERROR=ON)
+jobs=${FLEETMAP_JOBS:-$(nproc)}
+
+scripts/install_deps.sh
+cmake -S . -B "$build_dir" "${args[@]}" >/dev/null
+cmake --build "$build_dir" -j "$jobs"
+# Sanitizers: fail on the first report, and keep leak checking on.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"

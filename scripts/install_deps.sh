@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages fleetmap needs, and only those that are missing, so that
+# ./run_tests.sh, ./run_demo.sh and ./run_bench.sh work on a fresh machine. Idempotent.
+# Usage: scripts/install_deps.sh [extra-package ...]
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  liblcm-dev liblcm-bin liblcm-java default-jdk-headless libjchart2d-java  # LCM, lcm-spy
+  libeigen3-dev libopencv-dev libyaml-cpp-dev libzstd-dev zlib1g-dev
+  googletest libgtest-dev libgmock-dev libbenchmark-dev
+  iproute2  # ip route for LCM multicast on loopback
+  "$@"
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+((${#missing[@]} == 0)) && exit 0
+
+echo "install_deps: installing ${missing[*]}" >&2
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then
+  if command -v sudo >/dev/null; then
+    sudo=(sudo)
+  else
+    echo "install_deps: these packages are missing and we are not root: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
