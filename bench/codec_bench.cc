@@ -7,7 +7,7 @@
 
 #include "bench/figure_reporter.h"
 #include "core/tile_delta.h"
-#include "tools/livinglab_map.h"
+#include "tools/sim/livinglab_map.h"
 
 namespace fleetmap::bench {
 namespace {
@@ -16,7 +16,7 @@ using core::CellPacking;
 using core::Compression;
 
 const core::OccupancyGrid& Hall() {
-  static const core::OccupancyGrid hall = tools::MakeLivingLabMap();
+  static const core::OccupancyGrid hall = sim::MakeLivingLabMap();
   return hall;
 }
 
@@ -24,7 +24,7 @@ const core::OccupancyGrid& Hall() {
 const core::OccupancyGrid& HallWithPallet() {
   static const core::OccupancyGrid hall = [] {
     core::OccupancyGrid g = Hall();
-    tools::AddPalletToMap(g, 20.0, 4.0);
+    sim::AddPalletToMap(g, 20.0, 4.0);
     return g;
   }();
   return hall;

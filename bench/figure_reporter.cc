@@ -18,6 +18,7 @@ struct Figure {
 struct TimeRequest {
   std::string figure;
   std::string unit;
+  double rate_numerator = 0.0;  // > 0: report numerator / seconds instead of the time
 };
 
 // Figures are collected by the benchmark program's registration code and its benchmarks;
@@ -51,8 +52,10 @@ class FigureReporter : public benchmark::ConsoleReporter {
       auto it = TimeRequests().find(run.run_name.str());
       if (it == TimeRequests().end()) continue;
       const double seconds = run.GetAdjustedRealTime() * SecondsPer(TimeUnitName(run.time_unit));
-      measured_[it->first] = {it->second.figure, seconds / SecondsPer(it->second.unit),
-                              it->second.unit};
+      const TimeRequest& req = it->second;
+      const double value =
+          req.rate_numerator > 0 ? req.rate_numerator / seconds : seconds / SecondsPer(req.unit);
+      measured_[it->first] = {req.figure, value, req.unit};
     }
   }
   const std::map<std::string, Figure>& measured() const { return measured_; }
@@ -81,7 +84,12 @@ void RecordFigure(const std::string& name, double value, const std::string& unit
 
 void TimeFigure(const std::string& benchmark_name, const std::string& figure,
                 const std::string& unit) {
-  TimeRequests()[benchmark_name] = {figure, unit};
+  TimeRequests()[benchmark_name] = {figure, unit, 0.0};
+}
+
+void RateFigure(const std::string& benchmark_name, const std::string& figure,
+                const std::string& unit, double per_iteration) {
+  TimeRequests()[benchmark_name] = {figure, unit, per_iteration};
 }
 
 int RunBenchmarksAndPrintFigures(int argc, char** argv) {

@@ -15,6 +15,11 @@ void RecordFigure(const std::string& name, double value, const std::string& unit
 void TimeFigure(const std::string& benchmark_name, const std::string& figure,
                 const std::string& unit);
 
+// The figure `figure` is `per_iteration / seconds per iteration` of benchmark
+// `benchmark_name`: a rate, e.g. simulated seconds per wall-clock second.
+void RateFigure(const std::string& benchmark_name, const std::string& figure,
+                const std::string& unit, double per_iteration);
+
 // Runs the registered benchmarks (honouring --benchmark_* flags), then prints the figures.
 int RunBenchmarksAndPrintFigures(int argc, char** argv);
 

@@ -98,3 +98,11 @@ class Result {
     ::fleetmap::core::Status fleetmap_status_ = (expr);  \
     if (!fleetmap_status_.ok()) return fleetmap_status_; \
   } while (0)
+
+// Declares nothing: assigns the value of `expr` (a Result) to `lhs`, or returns its status.
+#define FLEETMAP_ASSIGN_OR_RETURN(lhs, expr)                      \
+  do {                                                            \
+    auto fleetmap_result_ = (expr);                               \
+    if (!fleetmap_result_.ok()) return fleetmap_result_.status(); \
+    lhs = std::move(fleetmap_result_).value();                    \
+  } while (0)

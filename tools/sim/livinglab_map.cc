@@ -1,9 +1,9 @@
-#include "tools/livinglab_map.h"
+#include "tools/sim/livinglab_map.h"
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-namespace fleetmap::tools {
+namespace fleetmap::sim {
 namespace {
 
 using core::CellIndex;
@@ -86,4 +86,4 @@ int AddPalletToMap(core::OccupancyGrid& grid, double x_m, double y_m, double siz
   return CopyStates(img, grid);
 }
 
-}  // namespace fleetmap::tools
+}  // namespace fleetmap::sim

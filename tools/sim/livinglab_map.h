@@ -5,7 +5,7 @@
 
 #include "core/occupancy_grid.h"
 
-namespace fleetmap::tools {
+namespace fleetmap::sim {
 
 struct LivingLabOptions {
   double length_m = 60.0;      // hall extent along x
@@ -22,4 +22,4 @@ core::OccupancyGrid MakeLivingLabMap(const LivingLabOptions& options = {});
 int AddPalletToMap(core::OccupancyGrid& grid, double x_m, double y_m, double size_x_m = 1.2,
                    double size_y_m = 0.8);
 
-}  // namespace fleetmap::tools
+}  // namespace fleetmap::sim

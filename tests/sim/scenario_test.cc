@@ -1,0 +1,113 @@
+#include "tools/sim/scenario.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/sim/sim_test_util.h"
+#include "tools/sim/world.h"
+
+namespace fleetmap::sim {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr const char* kGood = R"(
+name: tiny
+map: room.yaml
+duration_s: 20
+objects:
+  - {id: box, rect: {center: [5, 3], size: [1, 1]}, appear_s: 5}
+vehicles:
+  - id: v1
+    route: [[1, 1], [9, 1]]
+)";
+
+TEST(ScenarioTest, ParsesAndAppliesDefaults) {
+  auto s = ParseScenario(kGood, "/worlds/tiny.yaml");
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  EXPECT_EQ(s->map_yaml, "/worlds/room.yaml");
+  ASSERT_EQ(s->vehicles.size(), 1u);
+  EXPECT_EQ(s->vehicles[0].scanner.name, "S300");
+  EXPECT_EQ(s->vehicles[0].scanner.num_beams, 541);
+  EXPECT_DOUBLE_EQ(s->vehicles[0].motion.speed_mps, 0.5);
+  EXPECT_TRUE(s->objects[0].PresentAt(5.0));
+  EXPECT_FALSE(s->objects[0].PresentAt(4.9));
+}
+
+struct BadCase {
+  std::string yaml;
+  std::string message;
+};
+
+class ScenarioErrorTest : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(ScenarioErrorTest, NamesFileLineAndField) {
+  auto s = ParseScenario(GetParam().yaml, "bad.yaml");
+  ASSERT_FALSE(s.ok());
+  EXPECT_THAT(s.status().message(), HasSubstr(GetParam().message));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, ScenarioErrorTest,
+    ::testing::Values(
+        BadCase{"duration_s: 3\nvehicles: []\n", "bad.yaml:1: map: missing"},
+        BadCase{"map: m.yaml\nvehicles:\n  - id: v\n    scanner: S301\n    route: [[0,0],[1,0]]\n",
+                "bad.yaml:4: vehicles[0].scanner: unknown scanner model 'S301'"},
+        BadCase{"map: m.yaml\nvehicles:\n  - id: v\n    speed_mps: -1\n    route: [[0,0],[1,0]]\n",
+                "bad.yaml:4: vehicles[0].speed_mps: must be positive"},
+        BadCase{"map: m.yaml\nvehicles:\n  - id: v\n    route: [[0,0]]\n",
+                "vehicles[0].route: must be a list of at least 2"},
+        BadCase{
+            "map: m.yaml\nobjects:\n  - {id: p}\nvehicles:\n  - {id: v, route: [[0,0],[1,0]]}\n",
+            "bad.yaml:3: objects[0]: needs a 'rect' or a 'polygon'"},
+        BadCase{"map: m.yaml\nvehicles:\n  - {id: v, route: [[0,0],[1,0]]}\n  - {id: v, route: "
+                "[[0,0],[1,0]]}\n",
+                "vehicles[1].id: 'v' is used twice"},
+        BadCase{"map: [unclosed\n", "bad.yaml:"}));
+
+Scenario Tiny() { return ParseScenario(kGood, "tiny.yaml").value(); }
+
+TEST(WorldTest, RejectsObjectsOutsideTheMap) {
+  Scenario s = Tiny();
+  s.objects[0].polygon_m = RectanglePolygon({12.0, 3.0}, {1, 1}, 0);
+  auto w = World::Create(s, testing::Room());
+  ASSERT_FALSE(w.ok());
+  EXPECT_THAT(w.status().message(), HasSubstr("tiny.yaml: objects[0].polygon: lies outside"));
+}
+
+TEST(WorldTest, RejectsARouteThroughAWall) {
+  Scenario s = Tiny();
+  auto room = testing::Room();
+  for (int y = 0; y < 120; ++y) room.SetState({100, y}, core::CellState::kOccupied);
+  auto w = World::Create(s, room);
+  ASSERT_FALSE(w.ok());
+  EXPECT_THAT(w.status().message(), HasSubstr("vehicles[0].route leg 0: runs through a wall"));
+}
+
+TEST(WorldTest, RejectsAMissingMapNamingTheScenario) {
+  auto w = World::Load(testing::LivingLabDir() + "does_not_exist.yaml");
+  ASSERT_FALSE(w.ok());
+  EXPECT_THAT(w.status().message(), HasSubstr("does_not_exist.yaml"));
+}
+
+TEST(WorldTest, TruthFollowsAppearTimes) {
+  auto w = World::Create(Tiny(), testing::Room());
+  ASSERT_TRUE(w.ok()) << w.status().ToString();
+  const auto before = w->TrueMapAt(4.0), after = w->TrueMapAt(6.0);
+  EXPECT_EQ(before.state(before.geometry().WorldToCell({5.0, 3.0})), core::CellState::kFree);
+  EXPECT_EQ(after.state(after.geometry().WorldToCell({5.0, 3.0})), core::CellState::kOccupied);
+  EXPECT_EQ(w->object_cells()[0].size(), 400u);  // 1 m x 1 m at 5 cm
+  EXPECT_EQ(w->ChangeTimes(), std::vector<double>{5.0});
+}
+
+TEST(WorldTest, ShippedLivingLabScenariosLoad) {
+  for (const char* name : {"addition.yaml", "removal.yaml", "fleet.yaml"}) {
+    auto w = World::Load(testing::LivingLabDir() + name);
+    ASSERT_TRUE(w.ok()) << name << ": " << w.status().ToString();
+    EXPECT_EQ(w->geometry().width(), 1200);
+    EXPECT_EQ(w->geometry().height(), 360);
+  }
+}
+
+}  // namespace
+}  // namespace fleetmap::sim
