@@ -12,6 +12,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/file_io.h"
+
 namespace fleetmap::core {
 namespace {
 

@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/file_io.h"
 #include "core/pgm.h"
 
 namespace fleetmap::core {

@@ -54,15 +54,4 @@ Result<GrayImage> ReadPgmFile(const std::string& path, const PgmReadOptions& opt
 Status WritePgmFile(const GrayImage& image, const std::string& path,
                     PgmFormat format = PgmFormat::kBinary);
 
-// --- File helpers shared by the map file code (candidates for a core/file_io.h). ---
-
-// Reads a whole file of at most max_bytes into memory (NotFound, IoError, OutOfRange).
-Result<std::string> ReadFileBytes(const std::string& path, int64_t max_bytes);
-
-// Replaces `path` by `bytes` atomically: writes a temporary file in the same folder, fsyncs
-// it, renames it over `path` and fsyncs the folder. On any failure (missing or unwritable
-// folder, full disk) returns IoError naming the path and leaves neither a partial `path` nor
-// the temporary file; an existing `path` is then untouched. New files get mode 0644.
-Status WriteFileAtomically(const std::string& path, std::string_view bytes);
-
 }  // namespace fleetmap::core

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/file_io.h"
 #include "core/map_render.h"
 
 namespace fleetmap::core {

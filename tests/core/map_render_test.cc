@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "core/file_io.h"
 #include "core/pgm.h"
 
 namespace fleetmap::core {

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/file_io.h"
+
 namespace fleetmap::core {
 namespace {
 
