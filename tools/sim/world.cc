@@ -68,9 +68,10 @@ core::Result<World> World::Create(Scenario scenario, core::OccupancyGrid static_
   return world;
 }
 
-core::Result<World> World::Load(const std::string& scenario_path) {
+core::Result<World> World::Load(const std::string& scenario_path, const std::string& map_override) {
   auto scenario = LoadScenario(scenario_path);
   if (!scenario.ok()) return scenario.status();
+  if (!map_override.empty()) scenario->map_yaml = map_override;
   auto map = core::LoadMapServerMap(scenario->map_yaml);
   if (!map.ok()) return map.status().WithContext(scenario_path + ": map");
   return Create(std::move(scenario).value(), std::move(map->grid));

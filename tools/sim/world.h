@@ -15,8 +15,9 @@ class World {
   // Checks the scenario against the map: objects inside it, vehicle routes clear of walls and
   // inside the map, and returns the world. Errors name the scenario file and the field.
   static core::Result<World> Create(Scenario scenario, core::OccupancyGrid static_map);
-  // Loads the scenario and the static map it names.
-  static core::Result<World> Load(const std::string& scenario_path);
+  // Loads the scenario and the static map it names, or `map_override` when not empty.
+  static core::Result<World> Load(const std::string& scenario_path,
+                                  const std::string& map_override = "");
 
   const Scenario& scenario() const { return scenario_; }
   const core::OccupancyGrid& static_map() const { return static_map_; }

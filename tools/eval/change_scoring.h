@@ -1,0 +1,39 @@
+// Map quality against the truth. The truth of a changed cell is what the fleet's scanners
+// could have known (the simulator's ObservationLog): a cell of a semi-static object is truly
+// added if the last beam to reach it hit it, truly removed if it was hit once and the last
+// beam went through it. Predictions come from the run's map: a non-static cell occupied at the
+// end is predicted added; one occupied in some version and not at the end, predicted removed.
+// Matching allows `tolerance_cells` (Chebyshev distance), since a merged edge one cell off is
+// still the right edge.
+#pragma once
+
+#include "tools/eval/run_record.h"
+#include "tools/sim/observation_log.h"
+#include "tools/sim/world.h"
+
+namespace fleetmap::eval {
+
+struct ChangeScores {
+  int64_t true_added = 0, true_removed = 0;
+  int64_t predicted_added = 0, predicted_removed = 0;
+  int64_t correct_added = 0, correct_removed = 0;    // predictions that match a truth
+  int64_t recalled_added = 0, recalled_removed = 0;  // truths that a prediction matches
+  double precision = 1.0, recall = 1.0, f1 = 1.0;    // both kinds together
+  double added_precision = 1.0, added_recall = 1.0;
+  double removed_precision = 1.0, removed_recall = 1.0;
+  int64_t static_cells_erased = 0;  // occupied in the static map, not in the final map
+  int64_t actor_cells_mapped = 0;   // swept by an actor, no object's or wall's, yet occupied
+};
+
+struct ScoringOptions {
+  int tolerance_cells = 1;
+  double actor_sample_period_s = 0.05;  // how finely actor paths are swept
+};
+
+ChangeScores ScoreChanges(const sim::World& world, const sim::ObservationLog& observations,
+                          const RunRecord& run, const ScoringOptions& options = {});
+
+// Cells an actor's disc covered at some time of the scenario.
+std::vector<uint8_t> ActorSweptCells(const sim::World& world, double sample_period_s);
+
+}  // namespace fleetmap::eval

@@ -1,0 +1,219 @@
+#include "tools/eval/evaluator.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+namespace fleetmap::eval {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m, EvalReport& r) {
+  std::vector<double> trans, cells, rot;
+  for (const MergeRecord& m : merges) {
+    if (!m.accepted) {
+      ++r.merges_rejected;
+      continue;
+    }
+    ++r.merges_accepted;
+    const core::Pose2 residual = core::Between(m.placed_origin, m.true_origin);
+    // Below a nanometre is rounding in the pose algebra, not an alignment error.
+    const double t = std::hypot(residual.x_m, residual.y_m) < 1e-9
+                         ? 0.0
+                         : std::hypot(residual.x_m, residual.y_m);
+    trans.push_back(t);
+    cells.push_back(t / resolution_m);
+    rot.push_back(std::abs(residual.theta_rad) * kRadToDeg);
+  }
+  r.align_translation_m = Summarize(trans);
+  r.align_translation_cells = Summarize(cells);
+  r.align_rotation_deg = Summarize(rot);
+}
+
+// Per vehicle: the times at which it started a temporary map (d rose above 0), and whether
+// it was building at a given time.
+struct Triggers {
+  std::vector<double> starts;
+  std::vector<std::pair<double, bool>> samples;  // (t, building)
+};
+
+std::map<std::string, Triggers> CollectTriggers(const std::vector<DivergenceSample>& samples) {
+  std::map<std::string, Triggers> by_vehicle;
+  for (const DivergenceSample& s : samples) {
+    Triggers& t = by_vehicle[s.vehicle_id];
+    if (s.building && (t.samples.empty() || !t.samples.back().second)) t.starts.push_back(s.t_s);
+    t.samples.emplace_back(s.t_s, s.building);
+  }
+  return by_vehicle;
+}
+
+void ScoreDetection(const sim::World& world, const sim::ObservationLog& obs, const RunRecord& run,
+                    const EvalOptions& options, EvalReport& r) {
+  const auto triggers = CollectTriggers(run.divergence);
+  const auto& vehicles = world.scenario().vehicles;
+  std::vector<double> latencies;
+  std::map<std::string, std::vector<double>> seen_times;
+  for (size_t k = 0; k < world.scenario().objects.size(); ++k) {
+    for (size_t v = 0; v < vehicles.size(); ++v) {
+      const sim::ObjectChangeSeen& seen = obs.Seen(k, v);
+      for (double t_seen : {seen.appear_seen_s, seen.disappear_seen_s}) {
+        if (std::isnan(t_seen)) continue;
+        ++r.changes_seen;
+        seen_times[vehicles[v].id].push_back(t_seen);
+        auto it = triggers.find(vehicles[v].id);
+        if (it == triggers.end()) continue;
+        for (const auto& [t, building] : it->second.samples) {
+          if (t < t_seen || t > t_seen + options.detection_window_s) continue;
+          if (!building) continue;
+          latencies.push_back(t - t_seen);
+          ++r.changes_detected;
+          break;
+        }
+      }
+    }
+  }
+  r.detection_latency_s = Summarize(latencies);
+  for (const auto& [vehicle, t] : triggers) {
+    for (double start : t.starts) {
+      bool explained = false;
+      for (double seen : seen_times[vehicle])
+        explained |= start >= seen - 1.0 && start <= seen + options.trigger_window_s;
+      r.false_triggers += !explained;
+    }
+  }
+}
+
+void ScoreLocalization(const std::vector<PoseSample>& poses, EvalReport& r) {
+  std::vector<double> trans, rot;
+  for (const PoseSample& p : poses) {
+    const core::Pose2 e = core::Between(p.truth, p.estimated);
+    trans.push_back(std::hypot(e.x_m, e.y_m));
+    rot.push_back(std::abs(e.theta_rad) * kRadToDeg);
+  }
+  r.localization_error_m = Summarize(trans);
+  r.localization_error_deg = Summarize(rot);
+}
+
+std::string Number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6g", v);
+  return buf;
+}
+
+void AddStats(std::vector<std::pair<std::string, std::string>>& kv, const std::string& key,
+              const SummaryStats& s) {
+  kv.emplace_back(key + ".count", std::to_string(s.count));
+  kv.emplace_back(key + ".median", Number(s.median));
+  kv.emplace_back(key + ".p95", Number(s.p95));
+  kv.emplace_back(key + ".max", Number(s.max));
+}
+
+}  // namespace
+
+EvalReport Evaluate(const sim::World& world, const sim::ObservationLog& observations,
+                    const RunRecord& run, const EvalOptions& options) {
+  EvalReport r;
+  r.scenario = world.scenario().name;
+  r.pipeline = run.pipeline;
+  r.resolution_m = world.geometry().resolution_m();
+  r.changes = ScoreChanges(world, observations, run, options.scoring);
+  ScoreAlignment(run.merges, r.resolution_m, r);
+  ScoreDetection(world, observations, run, options, r);
+  ScoreLocalization(run.poses, r);
+  std::vector<double> merge_latency;
+  for (const MergeRecord& m : run.merges)
+    if (m.accepted) merge_latency.push_back(m.merged_s - m.closed_s);
+  r.merge_latency_s = Summarize(merge_latency);
+  r.merges = run.merges;
+  return r;
+}
+
+std::string ReportJson(const EvalReport& r) {
+  std::vector<std::pair<std::string, std::string>> kv;
+  kv.emplace_back("scenario", "\"" + r.scenario + "\"");
+  kv.emplace_back("pipeline", "\"" + r.pipeline + "\"");
+  const ChangeScores& c = r.changes;
+  kv.emplace_back("changed_cells.precision", Number(c.precision));
+  kv.emplace_back("changed_cells.recall", Number(c.recall));
+  kv.emplace_back("changed_cells.f1", Number(c.f1));
+  kv.emplace_back("changed_cells.added.true", std::to_string(c.true_added));
+  kv.emplace_back("changed_cells.added.predicted", std::to_string(c.predicted_added));
+  kv.emplace_back("changed_cells.added.precision", Number(c.added_precision));
+  kv.emplace_back("changed_cells.added.recall", Number(c.added_recall));
+  kv.emplace_back("changed_cells.removed.true", std::to_string(c.true_removed));
+  kv.emplace_back("changed_cells.removed.predicted", std::to_string(c.predicted_removed));
+  kv.emplace_back("changed_cells.removed.precision", Number(c.removed_precision));
+  kv.emplace_back("changed_cells.removed.recall", Number(c.removed_recall));
+  kv.emplace_back("static_cells_erased", std::to_string(c.static_cells_erased));
+  kv.emplace_back("actor_cells_mapped", std::to_string(c.actor_cells_mapped));
+  kv.emplace_back("merges.accepted", std::to_string(r.merges_accepted));
+  kv.emplace_back("merges.rejected", std::to_string(r.merges_rejected));
+  AddStats(kv, "alignment.translation_m", r.align_translation_m);
+  AddStats(kv, "alignment.translation_cells", r.align_translation_cells);
+  AddStats(kv, "alignment.rotation_deg", r.align_rotation_deg);
+  kv.emplace_back("detection.changes_seen", std::to_string(r.changes_seen));
+  kv.emplace_back("detection.changes_detected", std::to_string(r.changes_detected));
+  AddStats(kv, "detection.latency_s", r.detection_latency_s);
+  kv.emplace_back("detection.false_triggers", std::to_string(r.false_triggers));
+  AddStats(kv, "merge.latency_s", r.merge_latency_s);
+  AddStats(kv, "localization.error_m", r.localization_error_m);
+  AddStats(kv, "localization.error_deg", r.localization_error_deg);
+  std::ostringstream out;
+  out << "{\n";
+  for (size_t i = 0; i < kv.size(); ++i)
+    out << "  \"" << kv[i].first << "\": " << kv[i].second << (i + 1 < kv.size() ? ",\n" : "\n");
+  out << "}\n";
+  return out.str();
+}
+
+std::string LineTable(const EvalReport& r) {
+  std::ostringstream out;
+  out << "| temporary map | temporary line id | static line id | distance difference (px) | "
+         "angle difference (deg) |\n| --- | --- | --- | --- | --- |\n";
+  int map_number = 0;
+  for (const MergeRecord& m : r.merges) {
+    if (!m.accepted) continue;
+    ++map_number;
+    for (const LineMatchRow& l : m.lines) {
+      char row[160];
+      std::snprintf(row, sizeof(row), "| %s#%d (Map%d) | %d | %d | %.6g | %.6g |\n",
+                    m.vehicle_id.c_str(), m.tempmap_seq, map_number, l.temp_line_id,
+                    l.static_line_id, l.distance_diff_px, l.angle_diff_deg);
+      out << row;
+    }
+  }
+  return out.str();
+}
+
+std::string ReportMarkdown(const EvalReport& r) {
+  const ChangeScores& c = r.changes;
+  char buf[2048];
+  std::snprintf(
+      buf, sizeof(buf),
+      "# Evaluation: scenario %s, pipeline %s\n\n"
+      "| figure | value |\n| --- | --- |\n"
+      "| changed cells F1 (precision, recall) | %.3f (%.3f, %.3f) |\n"
+      "| added cells: true / predicted | %lld / %lld |\n"
+      "| removed cells: true / predicted | %lld / %lld |\n"
+      "| static cells erased | %lld |\n| actor cells mapped | %lld |\n"
+      "| merges accepted / rejected | %d / %d |\n"
+      "| alignment translation median / p95 | %.3g / %.3g cells |\n"
+      "| alignment rotation median / p95 | %.3g / %.3g deg |\n"
+      "| changes seen / detected | %d / %d |\n"
+      "| detection latency median | %.3g s |\n| false triggers | %d |\n"
+      "| merge latency median | %.3g s |\n"
+      "| localization error median / p95 | %.3g / %.3g m |\n",
+      r.scenario.c_str(), r.pipeline.c_str(), c.f1, c.precision, c.recall, (long long)c.true_added,
+      (long long)c.predicted_added, (long long)c.true_removed, (long long)c.predicted_removed,
+      (long long)c.static_cells_erased, (long long)c.actor_cells_mapped, r.merges_accepted,
+      r.merges_rejected, r.align_translation_cells.median, r.align_translation_cells.p95,
+      r.align_rotation_deg.median, r.align_rotation_deg.p95, r.changes_seen, r.changes_detected,
+      r.detection_latency_s.median, r.false_triggers, r.merge_latency_s.median,
+      r.localization_error_m.median, r.localization_error_m.p95);
+  return std::string(buf) + "\n## Matched lines (the paper's Tables 1/2)\n\n" + LineTable(r);
+}
+
+}  // namespace fleetmap::eval

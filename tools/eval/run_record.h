@@ -1,0 +1,62 @@
+// What one run of a pipeline produced, in the form the evaluation scores: the current map at
+// the end and every cell any version of it held occupied, the merges with where each
+// temporary map was placed, the divergence and pose traces. Filled in-process by a pipeline
+// or read back from a recorded run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/occupancy_grid.h"
+
+namespace fleetmap::eval {
+
+// One row of the paper's Tables 1 and 2.
+struct LineMatchRow {
+  int temp_line_id = 0;
+  int static_line_id = 0;
+  double distance_diff_px = 0.0;
+  double angle_diff_deg = 0.0;
+};
+
+struct MergeRecord {
+  std::string vehicle_id;
+  int tempmap_seq = 0;
+  double closed_s = 0.0;  // the temporary map was closed on the vehicle
+  double merged_s = 0.0;  // the change was in the current map
+  bool accepted = false;
+  std::string reason;
+  core::Pose2 placed_origin;  // the temporary map's origin as placed (anchor + correction)
+  core::Pose2 true_origin;    // where it truly lies (from the simulator's ground truth)
+  std::vector<LineMatchRow> lines;
+  int cells_added = 0;
+  int cells_removed = 0;
+};
+
+struct DivergenceSample {
+  std::string vehicle_id;
+  double t_s = 0.0;
+  double w_avg = 0.0, w_slow = 0.0, w_fast = 0.0, d = 0.0;
+  bool building = false;  // a temporary map is being built
+};
+
+struct PoseSample {
+  std::string vehicle_id;
+  double t_s = 0.0;
+  core::Pose2 estimated;
+  core::Pose2 truth;
+};
+
+struct RunRecord {
+  std::string pipeline;  // which pipeline made this run ("oracle", "agents", ...)
+  core::OccupancyGrid final_map;
+  std::vector<uint8_t> ever_occupied;  // per cell: occupied in some version of the map
+  std::vector<MergeRecord> merges;
+  std::vector<DivergenceSample> divergence;
+  std::vector<PoseSample> poses;
+
+  // Call with every version of the current map (the first is the static map).
+  void RecordVersion(const core::OccupancyGrid& current_map);
+};
+
+}  // namespace fleetmap::eval
