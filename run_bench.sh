@@ -11,7 +11,7 @@ min_time=0.5
 scripts/install_deps.sh
 cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
   -DFLEETMAP_BUILD_JAR=OFF >/dev/null
-cmake --build build-release -j "$(nproc)"
+cmake --build build-release -j "$(nproc)" >&2
 mkdir -p out/bench
 for program in build-release/bench/*_bench; do
   name=$(basename "$program")

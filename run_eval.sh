@@ -21,7 +21,7 @@ done
 scripts/install_deps.sh
 cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
   -DFLEETMAP_BUILD_JAR=OFF >/dev/null
-cmake --build build-release -j "$(nproc)" --target fleetmap-eval
+cmake --build build-release -j "$(nproc)" --target fleetmap-eval >&2
 
 # The pipeline that exists today. The oracle merges exactly what the scanners saw; once the
 # vehicle agent and aggregator libraries land, they replace it here.
