@@ -1,0 +1,141 @@
+// fleetmap-sim: runs a scenario and publishes every vehicle's scans and odometry over LCM,
+// in real time or at a speed factor, so that agents run exactly as on vehicles. See --help.
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <lcm/lcm-cpp.hpp>
+#include <string>
+#include <thread>
+
+#include "lcmtypes/convert.h"
+#include "tools/simlcm/sim_publisher.h"
+
+namespace {
+
+using namespace fleetmap;
+
+constexpr const char* kUsage = R"(usage: fleetmap-sim --scenario SCENARIO.yaml [options]
+
+Simulates the scenario's vehicles and publishes, per vehicle ID:
+  SCAN_<ID> (laser_scan_t), ODOM_<ID> (odometry_t), EXTPOSE_<ID> (vehicles with an external
+  localization) and TRUTH_<ID> (ground-truth pose, pose_with_covariance_t).
+options:
+  --scenario FILE  scenario YAML (docs/scenario.md; required)
+  --map FILE       static map instead of the scenario's
+  --speed X        simulated seconds per wall-clock second; 0 = as fast as possible  [1]
+  --duration S     stop after S simulated seconds           [the scenario's duration]
+  --lcm-url URL    where to publish                [udpm://239.255.76.69:7669?ttl=0]
+  --epoch S        add S seconds to every time stamp; default: the wall clock at start
+  --no-truth       do not publish TRUTH_<ID>
+  -h, --help       this text
+Stops cleanly on SIGINT/SIGTERM. Exit status: 0 done, 1 bad scenario or LCM failure, 2 usage.
+The multicast URL needs a route (loopback: ip route add 224.0.0.0/4 dev lo).
+)";
+
+volatile std::sig_atomic_t g_stop = 0;
+void OnSignal(int) { g_stop = 1; }
+
+struct Args {
+  std::string scenario, map, url = lcmtypes::kDefaultSensorUrl;
+  double speed = 1.0, duration = -1.0, epoch = -1.0;
+  bool truth = true;
+};
+
+bool Parse(int argc, char** argv, Args& a) {
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      const bool has_value = i + 1 < argc;
+      if (arg == "--scenario" && has_value)
+        a.scenario = argv[++i];
+      else if (arg == "--map" && has_value)
+        a.map = argv[++i];
+      else if (arg == "--speed" && has_value)
+        a.speed = std::stod(argv[++i]);
+      else if (arg == "--duration" && has_value)
+        a.duration = std::stod(argv[++i]);
+      else if (arg == "--lcm-url" && has_value)
+        a.url = argv[++i];
+      else if (arg == "--epoch" && has_value)
+        a.epoch = std::stod(argv[++i]);
+      else if (arg == "--no-truth")
+        a.truth = false;
+      else {
+        std::fprintf(stderr, "fleetmap-sim: bad or incomplete argument '%s'\n", arg.c_str());
+        return false;
+      }
+    }
+  } catch (const std::exception&) {
+    std::fprintf(stderr, "fleetmap-sim: --speed, --duration and --epoch take numbers\n");
+    return false;
+  }
+  return !a.scenario.empty() && a.speed >= 0.0;
+}
+
+double WallNow() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+  }
+  Args args;
+  if (!Parse(argc, argv, args)) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  auto world = sim::World::Load(args.scenario, args.map);
+  if (!world.ok()) {
+    std::fprintf(stderr, "fleetmap-sim: %s\n", world.status().ToString().c_str());
+    return 1;
+  }
+  lcm::LCM lcm(args.url);
+  if (!lcm.good()) {
+    std::fprintf(stderr,
+                 "fleetmap-sim: cannot open LCM at %s (for multicast on one host: "
+                 "ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo)\n",
+                 args.url.c_str());
+    return 1;
+  }
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  const double duration = args.duration >= 0 ? args.duration : world->scenario().duration_s;
+  simlcm::SimPublisherOptions options;
+  options.epoch_s = args.epoch >= 0 ? args.epoch : WallNow();
+  options.publish_truth = args.truth;
+  sim::Simulator simulator(&*world);
+  simlcm::SimPublisher publisher(&lcm, &*world, options);
+  std::fprintf(stderr, "fleetmap-sim: %s, %zu vehicles, %.0f s at %gx on %s\n",
+               args.scenario.c_str(), world->scenario().vehicles.size(), duration, args.speed,
+               args.url.c_str());
+  const auto start = std::chrono::steady_clock::now();
+  double next_progress_s = 10.0;
+  while (!g_stop) {
+    auto event = simulator.Next();
+    if (!event || sim::EventTime(*event) > duration) break;
+    const double t = sim::EventTime(*event);
+    if (args.speed > 0) {
+      std::this_thread::sleep_until(start +
+                                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                        std::chrono::duration<double>(t / args.speed)));
+    }
+    publisher.Publish(*event);
+    if (t >= next_progress_s) {
+      std::fprintf(stderr, "  %.0f s simulated, %lld messages, %.1f MB\n", t,
+                   (long long)publisher.counters().messages, publisher.counters().bytes / 1e6);
+      next_progress_s += 10.0;
+    }
+  }
+  const auto& c = publisher.counters();
+  std::fprintf(stderr,
+               "fleetmap-sim: %s after %.1f simulated s: %lld messages, %lld bytes, %lld failed\n",
+               g_stop ? "stopped" : "done", simulator.now_s(), (long long)c.messages,
+               (long long)c.bytes, (long long)c.failures);
+  return c.failures == 0 ? 0 : 1;
+}
