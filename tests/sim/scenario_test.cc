@@ -72,7 +72,7 @@ TEST(WorldTest, RejectsObjectsOutsideTheMap) {
   s.objects[0].polygon_m = RectanglePolygon({12.0, 3.0}, {1, 1}, 0);
   auto w = World::Create(s, testing::Room());
   ASSERT_FALSE(w.ok());
-  EXPECT_THAT(w.status().message(), HasSubstr("tiny.yaml: objects[0].polygon: lies outside"));
+  EXPECT_THAT(w.status().message(), HasSubstr("tiny.yaml:6: objects[0].polygon: lies outside"));
 }
 
 TEST(WorldTest, RejectsARouteThroughAWall) {
@@ -81,7 +81,7 @@ TEST(WorldTest, RejectsARouteThroughAWall) {
   for (int y = 0; y < 120; ++y) room.SetState({100, y}, core::CellState::kOccupied);
   auto w = World::Create(s, room);
   ASSERT_FALSE(w.ok());
-  EXPECT_THAT(w.status().message(), HasSubstr("vehicles[0].route leg 0: runs through a wall"));
+  EXPECT_THAT(w.status().message(), HasSubstr("tiny.yaml:8: vehicles[0].route leg 0: runs through a wall"));
 }
 
 TEST(WorldTest, RejectsAMissingMapNamingTheScenario) {

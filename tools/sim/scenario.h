@@ -21,6 +21,7 @@ struct SemiStaticObject {
   std::vector<Eigen::Vector2d> polygon_m;  // in the static map frame, metres
   double appear_s = 0.0;
   double disappear_s = std::numeric_limits<double>::infinity();
+  int line = 0;  // where it is defined in the scenario file, for messages
   bool PresentAt(double t_s) const { return t_s >= appear_s && t_s < disappear_s; }
 };
 
@@ -31,6 +32,7 @@ struct DynamicActor {
   double radius_m = 0.25;
   std::vector<Eigen::Vector2d> path_m;
   RouteOptions motion;  // speed, loop, start time
+  int line = 0;
 };
 
 // Thrun's odometry motion model noise (Probabilistic Robotics, table 5.6): standard
@@ -59,6 +61,7 @@ struct VehicleSpec {
   RouteOptions motion;
   OdometryNoise odometry;
   ExternalPoseNoise external_pose;
+  int line = 0;
 };
 
 struct Scenario {

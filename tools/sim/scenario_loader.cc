@@ -140,6 +140,7 @@ Status ReadList(const YamlReader& r, const std::string& key, ReadFn read, std::v
                        "'" + item->id + "' is used twice");
       }
     }
+    item->line = list[i].Mark().line + 1;
     out.push_back(std::move(item).value());
   }
   return core::OkStatus();

@@ -80,12 +80,15 @@ core::Result<World> World::Load(const std::string& scenario_path, const std::str
 core::Status World::Check() const {
   const core::GridGeometry& g = geometry();
   auto inside = [&](const Eigen::Vector2d& p) { return g.Contains(g.WorldToCell(p)); };
-  auto error = [&](const std::string& field, const std::string& what) {
-    return core::InvalidArgument(scenario_.path + ": " + field + ": " + what);
+  auto error = [&](int line, const std::string& field, const std::string& what) {
+    return core::InvalidArgument(scenario_.path + ":" + std::to_string(line) + ": " + field + ": " +
+                                 what);
   };
   for (size_t k = 0; k < scenario_.objects.size(); ++k) {
     for (const Eigen::Vector2d& p : scenario_.objects[k].polygon_m) {
-      if (!inside(p)) return error(Field("objects", k, "polygon"), "lies outside the map");
+      if (!inside(p))
+        return error(scenario_.objects[k].line, Field("objects", k, "polygon"),
+                     "lies outside the map");
     }
   }
   for (size_t v = 0; v < scenario_.vehicles.size(); ++v) {
@@ -97,18 +100,20 @@ core::Status World::Check() const {
         const Eigen::Vector2d p = a + (b - a) * (double(s) / steps);
         const core::CellIndex c = g.WorldToCell(p);
         const std::string field = Field("vehicles", v, "route") + " leg " + std::to_string(i);
-        if (!g.Contains(c)) return error(field, "leaves the map");
+        if (!g.Contains(c)) return error(scenario_.vehicles[v].line, field, "leaves the map");
         if (static_solid_[g.Index(c)]) {
           char where[64];
           std::snprintf(where, sizeof(where), "(%.2f, %.2f)", p.x(), p.y());
-          return error(field, std::string("runs through a wall at ") + where);
+          return error(scenario_.vehicles[v].line, field,
+                       std::string("runs through a wall at ") + where);
         }
       }
     }
   }
   for (size_t a = 0; a < scenario_.actors.size(); ++a) {
     for (const Eigen::Vector2d& p : scenario_.actors[a].path_m) {
-      if (!inside(p)) return error(Field("actors", a, "path"), "leaves the map");
+      if (!inside(p))
+        return error(scenario_.actors[a].line, Field("actors", a, "path"), "leaves the map");
     }
   }
   return core::OkStatus();
