@@ -98,6 +98,10 @@ TEST(WorldTest, TruthFollowsAppearTimes) {
   EXPECT_EQ(after.state(after.geometry().WorldToCell({5.0, 3.0})), core::CellState::kOccupied);
   EXPECT_EQ(w->object_cells()[0].size(), 400u);  // 1 m x 1 m at 5 cm
   EXPECT_EQ(w->ChangeTimes(), std::vector<double>{5.0});
+  const auto events = w->ChangeEvents();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].t_s, 5.0);
+  EXPECT_TRUE(events[0].added);
 }
 
 TEST(WorldTest, ShippedLivingLabScenariosLoad) {

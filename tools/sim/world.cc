@@ -150,6 +150,18 @@ std::vector<double> World::ChangeTimes() const {
   return times;
 }
 
+std::vector<ChangeEvent> World::ChangeEvents() const {
+  std::vector<ChangeEvent> events;
+  for (size_t k = 0; k < scenario_.objects.size(); ++k) {
+    const SemiStaticObject& o = scenario_.objects[k];
+    if (o.appear_s < scenario_.duration_s) events.push_back({std::max(0.0, o.appear_s), k, true});
+    if (o.disappear_s < scenario_.duration_s) events.push_back({o.disappear_s, k, false});
+  }
+  std::stable_sort(events.begin(), events.end(),
+                   [](const ChangeEvent& a, const ChangeEvent& b) { return a.t_s < b.t_s; });
+  return events;
+}
+
 RouteState World::VehicleStateAt(size_t vehicle, double t_s) const {
   return vehicle_routes_[vehicle].StateAt(t_s);
 }

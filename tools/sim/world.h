@@ -10,6 +10,14 @@
 
 namespace fleetmap::sim {
 
+// A semi-static object appearing ("added", also for objects there from the start: the static
+// map does not have them) or disappearing ("removed").
+struct ChangeEvent {
+  double t_s = 0.0;
+  size_t object = 0;  // index into scenario().objects
+  bool added = true;
+};
+
 class World {
  public:
   // Checks the scenario against the map: objects inside it, vehicle routes clear of walls and
@@ -32,6 +40,8 @@ class World {
   std::vector<uint8_t> SolidAt(double t_s) const;
   // The true map at `t_s`: the static map with the present objects' cells occupied.
   core::OccupancyGrid TrueMapAt(double t_s) const;
+  // Every change in time order (within the scenario's duration).
+  std::vector<ChangeEvent> ChangeEvents() const;
   // Sorted times at which an object appears or disappears (within the scenario's duration).
   std::vector<double> ChangeTimes() const;
 

@@ -1,0 +1,86 @@
+#include "core/scan_inserter.h"
+
+#include <cmath>
+#include <limits>
+
+namespace fleetmap::core {
+namespace {
+
+// Walks the cells from `from` towards `to` (exclusive), in continuous cell coordinates,
+// calling fn(cell) for each cell inside the grid (Amanatides and Woo).
+template <typename Fn>
+int WalkCells(const GridGeometry& g, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+              Fn fn) {
+  const Eigen::Vector2d d = to - from;
+  const double length = d.norm();
+  if (length < 1e-12) return 0;
+  const Eigen::Vector2d dir = d / length;
+  int x = int(std::floor(from.x())), y = int(std::floor(from.y()));
+  const int end_x = int(std::floor(to.x())), end_y = int(std::floor(to.y()));
+  const int step_x = dir.x() > 0 ? 1 : -1, step_y = dir.y() > 0 ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  double t_max_x = dir.x() != 0 ? ((step_x > 0 ? x + 1 : x) - from.x()) / dir.x() : inf;
+  double t_max_y = dir.y() != 0 ? ((step_y > 0 ? y + 1 : y) - from.y()) / dir.y() : inf;
+  const double t_dx = dir.x() != 0 ? std::abs(1.0 / dir.x()) : inf;
+  const double t_dy = dir.y() != 0 ? std::abs(1.0 / dir.y()) : inf;
+  int visited = 0;
+  // A beam crosses at most |dx| + |dy| + 2 cells; the bound guards against rounding loops.
+  const int max_steps = int(std::abs(d.x()) + std::abs(d.y())) + 2;
+  for (int i = 0; i < max_steps && !(x == end_x && y == end_y); ++i) {
+    if (g.Contains(CellIndex{x, y})) {
+      fn(CellIndex{x, y});
+      ++visited;
+    }
+    if (t_max_x < t_max_y) {
+      t_max_x += t_dx;
+      x += step_x;
+    } else {
+      t_max_y += t_dy;
+      y += step_y;
+    }
+  }
+  return visited;
+}
+
+}  // namespace
+
+Status ScanInsertOptions::Validate() const {
+  if (!(hit_log_odds > 0 && miss_log_odds < 0 && max_range_m > 0 && no_return_free_m >= 0 &&
+        beam_step >= 1)) {
+    return InvalidArgument("scan insert options need hit > 0, miss < 0, max range > 0, step >= 1");
+  }
+  return OkStatus();
+}
+
+InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
+                       const ScanInsertOptions& options, OccupancyGrid& grid) {
+  const GridGeometry& g = grid.geometry();
+  InsertStats stats;
+  const Eigen::Vector2d origin = g.WorldToGrid(scanner_in_grid.translation());
+  for (size_t i = 0; i < scan.size(); i += static_cast<size_t>(options.beam_step)) {
+    const bool valid = scan.IsValidReturn(i) && scan.ranges_m[i] <= options.max_range_m;
+    const double range = valid ? scan.ranges_m[i] : options.no_return_free_m;
+    const bool no_return = !valid && !std::isnan(scan.ranges_m[i]) &&
+                           (std::isinf(scan.ranges_m[i]) || scan.ranges_m[i] >= scan.range_max_m);
+    if (!valid && !(no_return && options.no_return_free_m > 0)) {
+      ++stats.skipped;
+      continue;
+    }
+    const double a = scanner_in_grid.theta_rad + scan.angle(i);
+    const Eigen::Vector2d end = g.WorldToGrid(scanner_in_grid.translation() +
+                                              range * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    stats.cells_missed += WalkCells(
+        g, origin, end, [&](const CellIndex& c) { grid.AddLogOdds(c, options.miss_log_odds); });
+    if (!valid) continue;
+    const CellIndex hit{int(std::floor(end.x())), int(std::floor(end.y()))};
+    if (g.Contains(hit)) {
+      grid.AddLogOdds(hit, options.hit_log_odds);
+      ++stats.hits;
+    } else {
+      ++stats.skipped;
+    }
+  }
+  return stats;
+}
+
+}  // namespace fleetmap::core
