@@ -13,9 +13,9 @@ double RayDisc(const Eigen::Vector2d& o, const Eigen::Vector2d& d, const Eigen::
   const Eigen::Vector2d oc = o - c;
   const double b = oc.dot(d), q = oc.squaredNorm() - r * r;
   const double disc = b * b - q;
-  if (disc < 0) return kNoHit;
+  if (disc < 0) return core::kNoHit;
   const double t = -b - std::sqrt(disc);
-  return t >= 0 ? t : (q < 0 ? 0.0 : kNoHit);
+  return t >= 0 ? t : (q < 0 ? 0.0 : core::kNoHit);
 }
 
 }  // namespace
@@ -46,7 +46,7 @@ Simulator::Simulator(const World* world)
     // Stagger the scanners a little, as real ones are not synchronised.
     c.next_scan_s = vehicles[v].scanner.period_s() * (0.1 + 0.8 * v / vehicles.size());
     c.next_odom_s = 0.0;
-    c.next_external_s = vehicles[v].external_pose.enabled ? 0.0 : kNoHit;
+    c.next_external_s = vehicles[v].external_pose.enabled ? 0.0 : core::kNoHit;
     c.last_true_pose = world_->VehicleStateAt(v, 0.0).pose;
     c.rng.seed(world_->scenario().seed * 7919u + static_cast<uint32_t>(v));
     clocks_.push_back(c);
@@ -65,7 +65,7 @@ Simulator::Simulator(const World* world)
 std::optional<SimEvent> Simulator::Next() {
   size_t best_v = 0;
   int best_kind = -1;
-  double best_t = kNoHit;
+  double best_t = core::kNoHit;
   for (size_t v = 0; v < clocks_.size(); ++v) {
     const double times[3] = {clocks_[v].next_scan_s, clocks_[v].next_odom_s,
                              clocks_[v].next_external_s};
@@ -118,7 +118,7 @@ ScanEvent Simulator::MakeScan(size_t v, double t) {
   const Eigen::Vector2d origin = e.true_scanner_pose.translation();
   for (int i = 0; i < m.num_beams; ++i) {
     const double angle = e.true_scanner_pose.theta_rad + scan.angle(static_cast<size_t>(i));
-    const RayHit hit = caster_.Cast(origin, angle, m.range_max_m);
+    const core::RayHit hit = caster_.Cast(origin, angle, m.range_max_m);
     const double range = std::min(hit.range_m, CastActors(origin, angle, m.range_max_m, t));
     RecordBeam(v, origin, angle, hit, range, t);
     scan.ranges_m[i] = range < m.range_max_m ? static_cast<float>(range) : INFINITY;
@@ -131,7 +131,7 @@ ScanEvent Simulator::MakeScan(size_t v, double t) {
 double Simulator::CastActors(const Eigen::Vector2d& origin, double angle, double range,
                              double t) const {
   const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
-  double best = kNoHit;
+  double best = core::kNoHit;
   for (size_t a = 0; a < world_->scenario().actors.size(); ++a) {
     const double r = world_->scenario().actors[a].radius_m;
     const double hit = RayDisc(origin, d, world_->ActorPositionAt(a, t), r);
@@ -142,8 +142,8 @@ double Simulator::CastActors(const Eigen::Vector2d& origin, double angle, double
 
 // Records, for the evaluation, which object cells this beam hit or passed through. Only
 // beams that cross an object's bounding box are walked cell by cell.
-void Simulator::RecordBeam(size_t v, const Eigen::Vector2d& origin, double angle, const RayHit& hit,
-                           double range, double t) {
+void Simulator::RecordBeam(size_t v, const Eigen::Vector2d& origin, double angle,
+                           const core::RayHit& hit, double range, double t) {
   const core::GridGeometry& g = world_->geometry();
   const auto& objects = world_->scenario().objects;
   const auto& raster = world_->object_raster();
@@ -159,7 +159,7 @@ void Simulator::RecordBeam(size_t v, const Eigen::Vector2d& origin, double angle
   const Eigen::Vector2d o = g.WorldToGrid(origin);
   const double a = angle - g.origin().theta_rad;
   const Eigen::Vector2d d(std::cos(a), std::sin(a));
-  const double t_end = (std::isfinite(range) ? range : kNoHit) / res;
+  const double t_end = (std::isfinite(range) ? range : core::kNoHit) / res;
   for (size_t k = 0; k < object_boxes_.size(); ++k) {
     const auto& b = object_boxes_[k];
     // Slab test against the box [x0, x1+1] x [y0, y1+1].

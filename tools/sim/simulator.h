@@ -9,9 +9,9 @@
 #include <random>
 #include <variant>
 
+#include "core/ray_caster.h"
 #include "core/scan.h"
 #include "tools/sim/observation_log.h"
-#include "tools/sim/ray_caster.h"
 #include "tools/sim/world.h"
 
 namespace fleetmap::sim {
@@ -63,13 +63,13 @@ class Simulator {
   ExternalPoseEvent MakeExternalPose(size_t v, double t);
   void UpdateSolid(double t);
   double CastActors(const Eigen::Vector2d& origin, double angle, double range, double t) const;
-  void RecordBeam(size_t v, const Eigen::Vector2d& origin, double angle, const RayHit& hit,
+  void RecordBeam(size_t v, const Eigen::Vector2d& origin, double angle, const core::RayHit& hit,
                   double range, double t);
   void ApplyScannerNoise(const ScannerModel& model, std::mt19937& rng,
                          std::vector<float>& ranges) const;
 
   const World* world_;
-  RayCaster caster_;
+  core::RayCaster caster_;
   ObservationLog observations_;
   std::vector<VehicleClock> clocks_;
   std::vector<double> change_times_;

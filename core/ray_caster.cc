@@ -1,11 +1,11 @@
-#include "tools/sim/ray_caster.h"
+#include "core/ray_caster.h"
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-namespace fleetmap::sim {
+namespace fleetmap::core {
 
-RayCaster::RayCaster(const core::GridGeometry& geometry)
+RayCaster::RayCaster(const GridGeometry& geometry)
     : geometry_(geometry),
       solid_(static_cast<size_t>(geometry.num_cells()), 0),
       clearance_cells_(static_cast<size_t>(geometry.num_cells()), 1e9f) {}
@@ -49,4 +49,4 @@ RayHit RayCaster::Cast(const Eigen::Vector2d& origin, double angle_rad, double m
   return {};
 }
 
-}  // namespace fleetmap::sim
+}  // namespace fleetmap::core

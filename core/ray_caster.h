@@ -11,32 +11,32 @@
 
 #include "core/grid_geometry.h"
 
-namespace fleetmap::sim {
+namespace fleetmap::core {
 
 constexpr double kNoHit = std::numeric_limits<double>::infinity();
 
 struct RayHit {
   double range_m = kNoHit;  // kNoHit when nothing solid lies within the range
-  core::CellIndex cell;     // the solid cell hit (valid when range_m is finite)
+  CellIndex cell;           // the solid cell hit (valid when range_m is finite)
 };
 
 class RayCaster {
  public:
-  explicit RayCaster(const core::GridGeometry& geometry);
+  explicit RayCaster(const GridGeometry& geometry);
 
   // Sets the solid cells (row-major, non-zero blocks beams) and rebuilds the distance field.
   void SetSolid(std::vector<uint8_t> solid);
   const std::vector<uint8_t>& solid() const { return solid_; }
-  const core::GridGeometry& geometry() const { return geometry_; }
+  const GridGeometry& geometry() const { return geometry_; }
 
   // First solid cell along the ray from `origin` (world) in direction `angle_rad` (world).
   // Beams that leave the grid hit nothing.
   RayHit Cast(const Eigen::Vector2d& origin, double angle_rad, double max_range_m) const;
 
  private:
-  core::GridGeometry geometry_;
+  GridGeometry geometry_;
   std::vector<uint8_t> solid_;
   std::vector<float> clearance_cells_;  // distance to the nearest solid cell centre, cells
 };
 
-}  // namespace fleetmap::sim
+}  // namespace fleetmap::core
