@@ -1,0 +1,1 @@
+#include "vehicle_agent/agent_options.h"
