@@ -1,0 +1,99 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "tools/carmen/carmen_log.h"
+#include "tools/carmen/relations.h"
+#include "vehicle_agent/local_mapper.h"
+
+namespace fleetmap::carmen {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(CarmenLogTest, ParsesFlaserRobotLaserAndOdom) {
+  CarmenLog log;
+  ASSERT_TRUE(
+      ParseCarmenLine("FLASER 4 1.0 2.0 50.0 3.5 0 0 0 1.0 2.0 0.5 12.25 host 12.3", 1, {}, log)
+          .ok());
+  ASSERT_TRUE(ParseCarmenLine("ODOM 1.0 2.0 0.5 0.3 0.1 0 12.5 host 12.5", 2, {}, log).ok());
+  ASSERT_TRUE(ParseCarmenLine("ROBOTLASER1 0 -1.5708 3.1416 0.0175 20 0.1 0 3 1 2 3 0 "
+                              "1.1 2.0 0.5 1.0 2.0 0.5 0.2 0 0 0 0 13.0 host 13.0",
+                              3, {}, log)
+                  .ok());
+  ASSERT_TRUE(ParseCarmenLine("PARAM robot_length 0.5", 4, {}, log).ok());
+  ASSERT_EQ(log.lasers.size(), 2u);
+  const LaserRecord& f = log.lasers[0];
+  EXPECT_DOUBLE_EQ(f.stamp_s, 12.25);
+  EXPECT_NEAR(f.scan.angle_increment_rad, M_PI / 4, 1e-12);  // 4 readings over 180 deg
+  EXPECT_FALSE(f.scan.IsValidReturn(2));                     // 50 m = the FLASER "no return"
+  EXPECT_DOUBLE_EQ(f.odom_pose.theta_rad, 0.5);
+  EXPECT_EQ(log.odometry.size(), 1u);
+  EXPECT_DOUBLE_EQ(log.odometry[0].v_mps, 0.3);
+  const LaserRecord& r = log.lasers[1];
+  EXPECT_EQ(r.scan.size(), 3u);
+  EXPECT_NEAR(r.laser_in_base.x_m, 0.1 * std::cos(0.5), 1e-9);  // 10 cm ahead of the base
+  EXPECT_EQ(log.skipped_lines, 1);
+}
+
+TEST(CarmenLogTest, MalformedLinesNameTheirNumber) {
+  CarmenLog log;
+  EXPECT_THAT(ParseCarmenLine("FLASER 3 1.0 2.0", 7, {}, log).message(), HasSubstr("line 7"));
+  EXPECT_FALSE(ParseCarmenLine("FLASER 99999999 1", 8, {}, log).ok());
+  EXPECT_FALSE(ParseCarmenLine("ODOM 1 2 nan 0 0 0 1 h 1", 9, {}, log).ok());
+  EXPECT_FALSE(ParseCarmenLine("FLASER -2 0 0 0 0 0 0 1 h 1", 10, {}, log).ok());
+  EXPECT_TRUE(log.lasers.empty());
+}
+
+TEST(RelationsTest, PerfectTrajectoryScoresZeroAndAnOffsetShows) {
+  const std::vector<Relation> relations = {{1.0, 2.0, core::Pose2(1, 0, 0.1)},
+                                           {2.0, 3.0, core::Pose2(0, 1, 0)},
+                                           {1.0, 100.0, core::Pose2(5, 5, 0)}};
+  std::vector<TimedPose> t = {{1.0, core::Pose2()}, {2.0, core::Pose2(1, 0, 0.1)}};
+  t.push_back({3.0, t[1].pose * core::Pose2(0, 1, 0)});
+  const RelationErrors short_span = ScoreRelations(relations, t, 60.0);
+  EXPECT_EQ(short_span.used, 2);
+  EXPECT_NEAR(short_span.trans_mean_m, 0.0, 1e-12);
+  const RelationErrors all = ScoreRelations(relations, t);
+  EXPECT_EQ(all.missing, 1);                       // t = 100 is not in the trajectory
+  t[2].pose = t[1].pose * core::Pose2(0.1, 1, 0);  // 10 cm off
+  EXPECT_NEAR(ScoreRelations(relations, t).trans_mean_m, 0.05, 1e-9);
+}
+
+// The real intel log (Kuemmerle et al.'s benchmark): over its first 3000 scans the scan
+// matcher must beat the log's own odometry within 60 s, in translation and rotation.
+TEST(RealLogTest, ScanMatcherBeatsOdometryOnIntel) {
+  const std::string dir = std::string(FLEETMAP_SHARED_DATA_DIR) + "/real/intel/";
+  if (!std::filesystem::exists(dir + "intel.rebuilt.clf")) {
+    GTEST_SKIP() << "no " << dir
+                 << "intel.rebuilt.clf: the shared data folder is not beside the repo";
+  }
+  auto log = ReadCarmenLog(dir + "intel.rebuilt.clf");
+  ASSERT_TRUE(log.ok()) << log.status().ToString();
+  auto relations = ReadRelations(dir + "intel.relations");
+  ASSERT_TRUE(relations.ok());
+  EXPECT_EQ(log->lasers.size(), 13631u);
+  vehicle_agent::LocalMapperOptions options;
+  options.map.size_m = 60;
+  vehicle_agent::LocalMapper mapper(options, log->lasers[0].odom_pose);
+  std::vector<TimedPose> matched, odometry;
+  for (size_t i = 0; i < 3000; ++i) {
+    const LaserRecord& r = log->lasers[i];
+    const core::Pose2 delta =
+        i ? core::Between(log->lasers[i - 1].odom_pose, r.odom_pose) : core::Pose2();
+    mapper.AddScan(r.scan, delta, r.laser_in_base);
+    matched.push_back({r.stamp_s, mapper.pose()});
+    odometry.push_back({r.stamp_s, r.odom_pose});
+  }
+  const RelationErrors ours = ScoreRelations(*relations, matched, 60.0);
+  const RelationErrors odom = ScoreRelations(*relations, odometry, 60.0);
+  ASSERT_GT(ours.used, 200);
+  EXPECT_LT(ours.trans_mean_m, odom.trans_mean_m);
+  EXPECT_LT(ours.rot_mean_deg, 0.6);
+  EXPECT_LT(ours.rot_mean_deg, odom.rot_mean_deg / 2);
+}
+
+}  // namespace
+}  // namespace fleetmap::carmen

@@ -1,0 +1,134 @@
+#include "tools/carmen/carmen_log.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace fleetmap::carmen {
+namespace {
+
+// Reads whitespace-separated numbers, remembering whether any failed.
+class Fields {
+ public:
+  explicit Fields(const std::string& line) : in_(line) {}
+  double Number() {
+    double v = 0;
+    if (!(in_ >> v) || !std::isfinite(v)) ok_ = false;
+    return v;
+  }
+  int Count(int max) {
+    const double v = Number();
+    if (v < 0 || v > max || v != std::floor(v)) ok_ = false;
+    return ok_ ? static_cast<int>(v) : 0;
+  }
+  // Three numbers read in order (function arguments are evaluated in no fixed order).
+  core::Pose2 Pose() {
+    const double x = Number(), y = Number(), theta = Number();
+    return {x, y, theta};
+  }
+  std::string Word() {
+    std::string w;
+    if (!(in_ >> w)) ok_ = false;
+    return w;
+  }
+  bool ok() const { return ok_; }
+
+ private:
+  std::istringstream in_;
+  bool ok_ = true;
+};
+
+constexpr int kMaxReadings = 10000;
+
+core::Status Bad(int line_number, const std::string& what) {
+  return core::InvalidArgument("line " + std::to_string(line_number) + ": " + what);
+}
+
+// FLASER num [ranges] x y theta odom_x odom_y odom_theta ipc_timestamp host logger_timestamp
+core::Status ParseFlaser(Fields& f, int n, const CarmenReadOptions& o, CarmenLog& log) {
+  LaserRecord r;
+  const int count = f.Count(kMaxReadings);
+  // 180 and 360 readings span 180 deg exclusive of the last; 181 and 361 inclusive.
+  r.scan.angle_min_rad = -M_PI / 2;
+  r.scan.angle_increment_rad = count % 2 == 1 ? M_PI / (count - 1) : M_PI / count;
+  r.scan.range_min_m = 0.0;
+  r.scan.range_max_m = o.flaser_max_range_m;
+  for (int i = 0; i < count; ++i) r.scan.ranges_m.push_back(static_cast<float>(f.Number()));
+  for (int i = 0; i < 3; ++i) f.Number();  // x y theta: the same as odom in these logs
+  r.odom_pose = f.Pose();
+  r.stamp_s = f.Number();
+  if (!f.ok() || count < 2) return Bad(n, "malformed FLASER");
+  r.scan.stamp_s = r.stamp_s;
+  log.lasers.push_back(std::move(r));
+  return core::OkStatus();
+}
+
+// ROBOTLASER1 type start fov res max_range accuracy remission_mode num [ranges] num_rem
+// [remissions] laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv fwd side turn
+// ipc_timestamp host logger_timestamp
+core::Status ParseRobotLaser(Fields& f, int n, CarmenLog& log) {
+  LaserRecord r;
+  f.Number();
+  r.scan.angle_min_rad = f.Number();
+  f.Number();  // field of view
+  r.scan.angle_increment_rad = f.Number();
+  r.scan.range_max_m = f.Number();
+  f.Number();
+  f.Number();
+  const int count = f.Count(kMaxReadings);
+  for (int i = 0; i < count; ++i) r.scan.ranges_m.push_back(static_cast<float>(f.Number()));
+  const int remissions = f.Count(kMaxReadings);
+  for (int i = 0; i < remissions; ++i) f.Number();
+  const core::Pose2 laser = f.Pose();
+  r.odom_pose = f.Pose();
+  r.laser_in_base = core::Between(r.odom_pose, laser);
+  for (int i = 0; i < 5; ++i) f.Number();
+  r.stamp_s = f.Number();
+  if (!f.ok() || count < 2) return Bad(n, "malformed ROBOTLASER1");
+  r.scan.stamp_s = r.stamp_s;
+  log.lasers.push_back(std::move(r));
+  return core::OkStatus();
+}
+
+}  // namespace
+
+core::Status ParseCarmenLine(const std::string& line, int n, const CarmenReadOptions& o,
+                             CarmenLog& log) {
+  Fields f(line);
+  const std::string type = f.Word();
+  if (type == "FLASER") return ParseFlaser(f, n, o, log);
+  if (type == "ROBOTLASER1") return ParseRobotLaser(f, n, log);
+  if (type == "ODOM") {
+    OdomRecord r;
+    r.pose = f.Pose();
+    r.v_mps = f.Number();
+    r.omega_radps = f.Number();
+    f.Number();  // acceleration
+    r.stamp_s = f.Number();
+    if (!f.ok()) return Bad(n, "malformed ODOM");
+    log.odometry.push_back(r);
+    return core::OkStatus();
+  }
+  ++log.skipped_lines;
+  return core::OkStatus();
+}
+
+core::Result<CarmenLog> ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
+  std::ifstream in(path);
+  if (!in) return core::NotFound(path + ": cannot open");
+  CarmenLog log;
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.empty() || line[0] == '#') {
+      ++log.skipped_lines;
+      continue;
+    }
+    FLEETMAP_RETURN_IF_ERROR(ParseCarmenLine(line, n, options, log).WithContext(path));
+  }
+  if (log.lasers.empty()) return core::InvalidArgument(path + ": no FLASER or ROBOTLASER1 lines");
+  return log;
+}
+
+}  // namespace fleetmap::carmen

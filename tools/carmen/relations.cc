@@ -1,0 +1,70 @@
+#include "tools/carmen/relations.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace fleetmap::carmen {
+namespace {
+
+const core::Pose2* Find(const std::vector<TimedPose>& trajectory, double t) {
+  auto it = std::lower_bound(trajectory.begin(), trajectory.end(), t - 1e-3,
+                             [](const TimedPose& p, double v) { return p.stamp_s < v; });
+  if (it == trajectory.end() || std::abs(it->stamp_s - t) > 1e-3) return nullptr;
+  return &it->pose;
+}
+
+void MeanStd(const std::vector<double>& v, double& mean, double& std) {
+  mean = std = 0.0;
+  if (v.empty()) return;
+  for (double x : v) mean += x;
+  mean /= v.size();
+  for (double x : v) std += (x - mean) * (x - mean);
+  std = std::sqrt(std / v.size());
+}
+
+}  // namespace
+
+core::Result<std::vector<Relation>> ReadRelations(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return core::NotFound(path + ": cannot open");
+  std::vector<Relation> relations;
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream f(line);
+    double t1, t2, x, y, z, roll, pitch, yaw;
+    if (!(f >> t1 >> t2 >> x >> y >> z >> roll >> pitch >> yaw) ||
+        !std::isfinite(t1 + t2 + x + y + yaw)) {
+      return core::InvalidArgument(path + ": line " + std::to_string(n) + ": malformed relation");
+    }
+    relations.push_back({t1, t2, core::Pose2(x, y, yaw)});
+  }
+  return relations;
+}
+
+RelationErrors ScoreRelations(const std::vector<Relation>& relations,
+                              const std::vector<TimedPose>& trajectory, double max_span_s) {
+  RelationErrors e;
+  std::vector<double> trans, rot;
+  for (const Relation& r : relations) {
+    if (std::abs(r.t2_s - r.t1_s) > max_span_s) continue;
+    const core::Pose2 *a = Find(trajectory, r.t1_s), *b = Find(trajectory, r.t2_s);
+    if (!a || !b) {
+      ++e.missing;
+      continue;
+    }
+    const core::Pose2 error = core::Between(r.delta, core::Between(*a, *b));
+    trans.push_back(std::hypot(error.x_m, error.y_m));
+    rot.push_back(std::abs(error.theta_rad) * 180.0 / M_PI);
+  }
+  e.used = static_cast<int>(trans.size());
+  MeanStd(trans, e.trans_mean_m, e.trans_std_m);
+  MeanStd(rot, e.rot_mean_deg, e.rot_std_deg);
+  return e;
+}
+
+}  // namespace fleetmap::carmen

@@ -1,0 +1,42 @@
+// The SLAM benchmark metric of Kümmerle et al., "On measuring the accuracy of SLAM algorithms"
+// (Autonomous Robots 27(4), 2009): for every relation (t1, t2, delta*) between two scan
+// times, the error of the estimated relative motion delta = x(t1)^-1 x(t2) against delta*;
+// reported as mean and standard deviation of the absolute translational and rotational errors.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/pose2.h"
+#include "core/result.h"
+
+namespace fleetmap::carmen {
+
+struct Relation {
+  double t1_s = 0.0, t2_s = 0.0;
+  core::Pose2 delta;  // pose at t2 in the frame of the pose at t1
+};
+
+// Lines "t1 t2 x y z roll pitch yaw" (z, roll and pitch are 0 in 2D logs).
+core::Result<std::vector<Relation>> ReadRelations(const std::string& path);
+
+struct TimedPose {
+  double stamp_s = 0.0;
+  core::Pose2 pose;
+};
+
+struct RelationErrors {
+  int used = 0;     // relations scored
+  int missing = 0;  // relations whose time stamps are not in the trajectory
+  double trans_mean_m = 0.0, trans_std_m = 0.0;
+  double rot_mean_deg = 0.0, rot_std_deg = 0.0;
+};
+
+// Scores the relations spanning at most `max_span_s` (|t2 - t1|). Trajectory poses are
+// looked up by time stamp, within 1 ms; `trajectory` must be sorted by time.
+RelationErrors ScoreRelations(const std::vector<Relation>& relations,
+                              const std::vector<TimedPose>& trajectory,
+                              double max_span_s = std::numeric_limits<double>::infinity());
+
+}  // namespace fleetmap::carmen

@@ -1,0 +1,202 @@
+// fleetmap-carmen-eval: runs the temporary-map builder's scan matcher over a CARMEN log and
+// scores its trajectory with the SLAM benchmark's relations, next to the log's odometry.
+#include <chrono>
+#include <memory>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "core/map_render.h"
+#include "core/scan_inserter.h"
+#include "tools/carmen/carmen_log.h"
+#include "tools/carmen/relations.h"
+#include "vehicle_agent/local_mapper.h"
+
+namespace {
+
+using namespace fleetmap;
+
+constexpr const char* kUsage = R"(usage: fleetmap-carmen-eval --carmen LOG --relations REL [options]
+
+Runs the scan matcher of the temporary-map builder over every laser scan of a CARMEN log
+(FLASER, ROBOTLASER1), with the log's odometry as the prior, and scores the trajectory with the
+benchmark relations (Kuemmerle et al. 2009): mean absolute translational and rotational error
+over all relations and over those spanning at most --window seconds. The log's raw odometry is
+scored the same way as the baseline. Prints `real.<name>.<...> value unit` lines.
+options:
+  --name NAME          name in the figure lines                   [the log's file stem]
+  --window S           span of the windowed figures, seconds      [60]
+  --map-lifetime S     start a fresh map every S seconds, chained like temporary maps;
+                       0: one map for the whole log               [60]
+  --map-size M         side of each map, metres                   [80]
+  --resolution M       finest cell size, metres                   [0.05]
+  --levels N           resolution levels                          [3]
+  --png FILE           draw the log's map at the estimated poses
+  --max-range M        returns farther away are not used          [25]
+  --prior-xy M, --prior-theta RAD, --sigma-map P
+                       odometry prior (base) and map noise       [0.005, 0.005, 0.25]
+  --update-distance M, --update-angle RAD
+                       travel between map insertions              [0.1, 0.1]
+  -h, --help           this text
+)";
+
+struct Args {
+  std::string carmen, relations, name, png;
+  double window_s = 60, lifetime_s = 60, size_m = 80, resolution_m = 0.05;
+  int levels = 3;
+  vehicle_agent::LocalMapperOptions mapper;  // matcher and update settings
+};
+
+bool Parse(int argc, char** argv, Args& a) {
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      if (i + 1 >= argc) return false;
+      const std::string v = argv[++i];
+      if (arg == "--carmen")
+        a.carmen = v;
+      else if (arg == "--relations")
+        a.relations = v;
+      else if (arg == "--name")
+        a.name = v;
+      else if (arg == "--png")
+        a.png = v;
+      else if (arg == "--window")
+        a.window_s = std::stod(v);
+      else if (arg == "--map-lifetime")
+        a.lifetime_s = std::stod(v);
+      else if (arg == "--map-size")
+        a.size_m = std::stod(v);
+      else if (arg == "--resolution")
+        a.resolution_m = std::stod(v);
+      else if (arg == "--levels")
+        a.levels = std::stoi(v);
+      else if (arg == "--max-range")
+        a.mapper.max_range_m = std::stod(v);
+      else if (arg == "--prior-xy")
+        a.mapper.matcher.prior_sigma_xy_m = std::stod(v);
+      else if (arg == "--prior-theta")
+        a.mapper.matcher.prior_sigma_theta_rad = std::stod(v);
+      else if (arg == "--sigma-map")
+        a.mapper.matcher.sigma_map = std::stod(v);
+      else if (arg == "--update-distance")
+        a.mapper.update_min_distance_m = std::stod(v);
+      else if (arg == "--update-angle")
+        a.mapper.update_min_angle_rad = std::stod(v);
+      else
+        return false;
+    }
+  } catch (const std::exception&) {
+    return false;
+  }
+  return !a.carmen.empty() && !a.relations.empty();
+}
+
+std::string Stem(const std::string& path) {
+  std::string s = path.substr(path.find_last_of('/') + 1);
+  return s.substr(0, s.find('.'));
+}
+
+std::vector<carmen::TimedPose> RunMatcher(const carmen::CarmenLog& log, const Args& args,
+                                          double& ms_per_scan) {
+  vehicle_agent::LocalMapperOptions options = args.mapper;
+  options.map.resolution_m = args.resolution_m;
+  options.map.levels = args.levels;
+  options.map.size_m = args.size_m;
+  std::vector<carmen::TimedPose> trajectory;
+  std::unique_ptr<vehicle_agent::LocalMapper> mapper;
+  double map_start_s = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < log.lasers.size(); ++i) {
+    const carmen::LaserRecord& r = log.lasers[i];
+    const core::Pose2 delta =
+        i == 0 ? core::Pose2() : core::Between(log.lasers[i - 1].odom_pose, r.odom_pose);
+    if (!mapper || (args.lifetime_s > 0 && r.stamp_s - map_start_s >= args.lifetime_s) ||
+        !mapper->map().Inside(mapper->pose().translation(), 10.0)) {
+      // A fresh map at the current estimate, as a new temporary map would start.
+      const core::Pose2 start_pose = mapper ? mapper->pose() * delta : r.odom_pose;
+      mapper = std::make_unique<vehicle_agent::LocalMapper>(options, start_pose);
+      map_start_s = r.stamp_s;
+      mapper->AddScan(r.scan, {}, r.laser_in_base);
+    } else {
+      mapper->AddScan(r.scan, delta, r.laser_in_base);
+    }
+    trajectory.push_back({r.stamp_s, mapper->pose()});
+  }
+  ms_per_scan =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+      log.lasers.size();
+  return trajectory;
+}
+
+// Every scan inserted at its estimated pose into one grid covering the whole trajectory.
+core::Status DrawMap(const carmen::CarmenLog& log, const std::vector<carmen::TimedPose>& trajectory,
+                     const std::string& path) {
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (const auto& p : trajectory) {
+    lo = lo.cwiseMin(p.pose.translation());
+    hi = hi.cwiseMax(p.pose.translation());
+  }
+  const double res = 0.05, margin = 15.0;
+  core::OccupancyGrid grid(core::GridGeometry(res, int((hi.x() - lo.x() + 2 * margin) / res),
+                                              int((hi.y() - lo.y() + 2 * margin) / res),
+                                              core::Pose2(lo.x() - margin, lo.y() - margin, 0)));
+  core::ScanInsertOptions insert;
+  insert.max_range_m = 20.0;
+  for (size_t i = 0; i < log.lasers.size(); i += 2)
+    core::InsertScan(log.lasers[i].scan, trajectory[i].pose * log.lasers[i].laser_in_base, insert,
+                     grid);
+  return core::RenderGridToPng(grid, path);
+}
+
+void Print(const std::string& name, const std::string& what, const carmen::RelationErrors& e) {
+  std::printf("real.%s.%s.trans_mean_m %.4f m\n", name.c_str(), what.c_str(), e.trans_mean_m);
+  std::printf("real.%s.%s.rot_mean_deg %.3f deg\n", name.c_str(), what.c_str(), e.rot_mean_deg);
+  std::fprintf(stderr, "  %-12s %5d relations (%d missing): %.4f +- %.4f m, %.3f +- %.3f deg\n",
+               what.c_str(), e.used, e.missing, e.trans_mean_m, e.trans_std_m, e.rot_mean_deg,
+               e.rot_std_deg);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+      return std::fputs(kUsage, stdout), 0;
+  Args args;
+  if (!Parse(argc, argv, args)) return std::fputs(kUsage, stderr), 2;
+  const std::string name = args.name.empty() ? Stem(args.carmen) : args.name;
+  auto log = carmen::ReadCarmenLog(args.carmen);
+  if (!log.ok())
+    return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", log.status().ToString().c_str()), 1;
+  auto relations = carmen::ReadRelations(args.relations);
+  if (!relations.ok())
+    return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n",
+                        relations.status().ToString().c_str()),
+           1;
+  std::fprintf(stderr, "fleetmap-carmen-eval: %s: %zu scans, %zu relations\n", args.carmen.c_str(),
+               log->lasers.size(), relations->size());
+  std::vector<carmen::TimedPose> odometry;
+  for (const auto& r : log->lasers) odometry.push_back({r.stamp_s, r.odom_pose});
+  double ms_per_scan = 0;
+  const auto matched = RunMatcher(*log, args, ms_per_scan);
+  const std::string win = "win" + std::to_string(static_cast<int>(args.window_s));
+  Print(name, "all", carmen::ScoreRelations(*relations, matched));
+  Print(name, win, carmen::ScoreRelations(*relations, matched, args.window_s));
+  Print(name, "odom.all", carmen::ScoreRelations(*relations, odometry));
+  Print(name, "odom." + win, carmen::ScoreRelations(*relations, odometry, args.window_s));
+  if (const char* dump = std::getenv("FLEETMAP_DUMP_TRAJECTORY")) {
+    if (FILE* f = std::fopen(dump, "w")) {
+      for (const auto& p : matched) std::fprintf(f, "%.6f %.6f %.6f %.6f\n", p.stamp_s, p.pose.x_m, p.pose.y_m, p.pose.theta_rad);
+      std::fclose(f);
+    }
+  }
+  std::printf("real.%s.ms_per_scan %.4f ms\n", name.c_str(), ms_per_scan);
+  if (!args.png.empty()) {
+    const core::Status s = DrawMap(*log, matched, args.png);
+    if (!s.ok()) return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 1;
+    std::fprintf(stderr, "  map: %s\n", args.png.c_str());
+  }
+  return 0;
+}

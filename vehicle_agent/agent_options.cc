@@ -1,1 +1,0 @@
-#include "vehicle_agent/agent_options.h"

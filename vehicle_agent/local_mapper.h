@@ -1,0 +1,54 @@
+// Incremental scan-matching mapping around a start pose: each scan is matched against the
+// map built so far (odometry as the prior), and inserted into it once the vehicle has moved
+// enough since the last insertion (repeated insertions from one spot only sharpen noise).
+// The temporary-map builder runs one; fleetmap-carmen-eval runs one over whole logs.
+#pragma once
+
+#include "core/scan.h"
+#include "vehicle_agent/scan_matcher.h"
+
+namespace fleetmap::vehicle_agent {
+
+struct LocalMapperOptions {
+  MultiResolutionMapOptions map;
+  ScanMatcherOptions matcher;
+  double update_min_distance_m = 0.1;  // insert a scan after this much travel ...
+  double update_min_angle_rad = 0.1;   // ... or this much turning
+  double min_range_m = 0.1;            // end points closer than this are not matched
+  double max_range_m = 25.0;           // ... nor farther than this
+  core::Status Validate() const;
+};
+
+struct ScanUpdate {
+  core::Pose2 pose;  // base pose in the mapper's frame after matching
+  MatchResult match;
+  bool inserted = false;  // the scan went into the map
+  bool matched = false;   // false for the first scan (nothing to match against yet)
+};
+
+class LocalMapper {
+ public:
+  // The map's frame is the one `start_pose` is given in; the map is centred on it.
+  explicit LocalMapper(const LocalMapperOptions& options, const core::Pose2& start_pose = {});
+
+  // `odometry_delta` is the base's motion since the previous scan (in the previous base frame).
+  ScanUpdate AddScan(const core::LaserScan& scan, const core::Pose2& odometry_delta,
+                     const core::Pose2& scanner_in_base);
+
+  const core::Pose2& pose() const { return pose_; }
+  const MultiResolutionMap& map() const { return map_; }
+  int scans_inserted() const { return scans_inserted_; }
+
+ private:
+  std::vector<Eigen::Vector2d> EndPoints(const core::LaserScan& scan,
+                                         const core::Pose2& scanner_in_base) const;
+
+  LocalMapperOptions options_;
+  MultiResolutionMap map_;
+  core::Pose2 pose_;
+  core::Pose2 last_insert_pose_;
+  bool first_ = true;
+  int scans_inserted_ = 0;
+};
+
+}  // namespace fleetmap::vehicle_agent

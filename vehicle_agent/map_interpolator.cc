@@ -1,0 +1,44 @@
+#include "vehicle_agent/map_interpolator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fleetmap::vehicle_agent {
+
+MapInterpolator::MapInterpolator(const core::OccupancyGrid* grid) : grid_(grid) {
+  const core::LogOddsLimits& l = grid->limits();
+  table_min_ = l.min_log_odds;
+  table_scale_ = (table_.size() - 1) / (l.max_log_odds - l.min_log_odds);
+  for (size_t i = 0; i < table_.size(); ++i) {
+    table_[i] = static_cast<float>(core::LogOddsToProbability(table_min_ + i / table_scale_));
+  }
+}
+
+double MapInterpolator::Probability(int x, int y) const {
+  const core::GridGeometry& g = grid_->geometry();
+  if (x < 0 || y < 0 || x >= g.width() || y >= g.height()) return 0.0;
+  const float l = grid_->cells()[static_cast<size_t>(y) * g.width() + x];
+  if (l == 0.0f) return 0.0;  // never observed
+  const int i = static_cast<int>((l - table_min_) * table_scale_ + 0.5f);
+  return table_[static_cast<size_t>(std::clamp(i, 0, static_cast<int>(table_.size()) - 1))];
+}
+
+InterpolatedValue MapInterpolator::At(const Eigen::Vector2d& p) const {
+  const core::GridGeometry& g = grid_->geometry();
+  const double res = g.resolution_m();
+  // Continuous coordinates of cell centres: cell (i, j) has its centre at (i, j).
+  const double u = (p.x() - g.origin().x_m) / res - 0.5;
+  const double v = (p.y() - g.origin().y_m) / res - 0.5;
+  const int x0 = static_cast<int>(std::floor(u)), y0 = static_cast<int>(std::floor(v));
+  const double fx = u - x0, fy = v - y0;
+  const double p00 = Probability(x0, y0), p10 = Probability(x0 + 1, y0);
+  const double p01 = Probability(x0, y0 + 1), p11 = Probability(x0 + 1, y0 + 1);
+  InterpolatedValue out;
+  out.value = (1 - fy) * ((1 - fx) * p00 + fx * p10) + fy * ((1 - fx) * p01 + fx * p11);
+  out.gradient_per_m = Eigen::Vector2d((1 - fy) * (p10 - p00) + fy * (p11 - p01),
+                                       (1 - fx) * (p01 - p00) + fx * (p11 - p10)) /
+                       res;
+  return out;
+}
+
+}  // namespace fleetmap::vehicle_agent

@@ -1,0 +1,58 @@
+// Builds one temporary map at a time, Hector-style, while the divergence detector says the
+// map no longer explains the laser: started at the localized pose (the anchor), grown scan by
+// scan with odometry as the matching prior, and closed into a core::TempMap cropped to what
+// was observed. Bounded: a map that would run out of its area or time is closed, and the
+// caller starts the next one.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/temp_map.h"
+#include "vehicle_agent/local_mapper.h"
+
+namespace fleetmap::vehicle_agent {
+
+struct TempMapBuilderOptions {
+  LocalMapperOptions mapper;     // mapper.map.size_m bounds the map's area (default 20 m)
+  double max_duration_s = 60.0;  // a map older than this is closed
+  double edge_margin_m = 4.0;    // ... and so is one whose vehicle comes this close to its edge
+  int crop_margin_cells = 4;     // unknown border kept around the observed cells
+  core::Status Validate() const;
+};
+
+struct BuilderStep {
+  core::Pose2 pose_in_temp;  // the vehicle in the temporary map's frame
+  bool matched = false;
+  bool must_close = false;  // out of area or time: close it (and start another if needed)
+};
+
+class TempMapBuilder {
+ public:
+  explicit TempMapBuilder(const TempMapBuilderOptions& options);
+
+  // Starts a map anchored at the vehicle's localized pose.
+  void Start(const std::string& vehicle_id, int32_t sequence, double stamp_s,
+             const core::Pose2& anchor_in_map);
+  bool building() const { return mapper_ != nullptr; }
+
+  // `odometry_delta` is the base's motion since the previous scan.
+  BuilderStep AddScan(const core::LaserScan& scan, const core::Pose2& odometry_delta,
+                      const core::Pose2& scanner_in_base);
+
+  // Closes the map: its grid cropped to the observed cells, its trajectory and times.
+  // Nothing (and the builder reset) if no scan was added.
+  std::optional<core::TempMap> Close(double stamp_s);
+
+ private:
+  TempMapBuilderOptions options_;
+  std::unique_ptr<LocalMapper> mapper_;
+  core::TempMap pending_;  // everything but the grid, filled while building
+};
+
+// The smallest window holding every observed (non-zero) cell, grown by `margin` cells; the
+// grid itself when nothing was observed.
+core::OccupancyGrid CropToObserved(const core::OccupancyGrid& grid, int margin);
+
+}  // namespace fleetmap::vehicle_agent
