@@ -1,9 +1,9 @@
 // fleetmap-carmen-eval: runs the temporary-map builder's scan matcher over a CARMEN log and
 // scores its trajectory with the SLAM benchmark's relations, next to the log's odometry.
 #include <chrono>
-#include <memory>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,11 +28,14 @@ options:
   --name NAME          name in the figure lines                   [the log's file stem]
   --window S           span of the windowed figures, seconds      [60]
   --map-lifetime S     start a fresh map every S seconds, chained like temporary maps;
-                       0: one map for the whole log               [60]
-  --map-size M         side of each map, metres                   [80]
+                       0: one map for the whole log               [0]
+  --map-size M         side of each map, metres                   [120]
   --resolution M       finest cell size, metres                   [0.05]
   --levels N           resolution levels                          [3]
   --png FILE           draw the log's map at the estimated poses
+  --interpolate-odometry 0|1
+                       odometry at each scan's time from the ODOM lines, rather than the
+                       last ODOM before it (what FLASER lines carry)  [0]
   --max-range M        returns farther away are not used          [25]
   --prior-xy M, --prior-theta RAD, --sigma-map P
                        odometry prior (base) and map noise       [0.005, 0.005, 0.25]
@@ -43,8 +46,9 @@ options:
 
 struct Args {
   std::string carmen, relations, name, png;
-  double window_s = 60, lifetime_s = 60, size_m = 80, resolution_m = 0.05;
+  double window_s = 60, lifetime_s = 0, size_m = 120, resolution_m = 0.05;
   int levels = 3;
+  bool interpolate_odometry = false;
   vehicle_agent::LocalMapperOptions mapper;  // matcher and update settings
 };
 
@@ -72,6 +76,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.resolution_m = std::stod(v);
       else if (arg == "--levels")
         a.levels = std::stoi(v);
+      else if (arg == "--interpolate-odometry")
+        a.interpolate_odometry = v != "0";
       else if (arg == "--max-range")
         a.mapper.max_range_m = std::stod(v);
       else if (arg == "--prior-xy")
@@ -175,8 +181,11 @@ int main(int argc, char** argv) {
     return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n",
                         relations.status().ToString().c_str()),
            1;
-  std::fprintf(stderr, "fleetmap-carmen-eval: %s: %zu scans, %zu relations\n", args.carmen.c_str(),
-               log->lasers.size(), relations->size());
+  const int interpolated = args.interpolate_odometry ? carmen::InterpolateOdometryAtScans(*log) : 0;
+  std::fprintf(stderr,
+               "fleetmap-carmen-eval: %s: %zu scans (%d with odometry interpolated at the scan "
+               "time), %zu relations\n",
+               args.carmen.c_str(), log->lasers.size(), interpolated, relations->size());
   std::vector<carmen::TimedPose> odometry;
   for (const auto& r : log->lasers) odometry.push_back({r.stamp_s, r.odom_pose});
   double ms_per_scan = 0;
@@ -188,7 +197,9 @@ int main(int argc, char** argv) {
   Print(name, "odom." + win, carmen::ScoreRelations(*relations, odometry, args.window_s));
   if (const char* dump = std::getenv("FLEETMAP_DUMP_TRAJECTORY")) {
     if (FILE* f = std::fopen(dump, "w")) {
-      for (const auto& p : matched) std::fprintf(f, "%.6f %.6f %.6f %.6f\n", p.stamp_s, p.pose.x_m, p.pose.y_m, p.pose.theta_rad);
+      for (const auto& p : matched)
+        std::fprintf(f, "%.6f %.6f %.6f %.6f\n", p.stamp_s, p.pose.x_m, p.pose.y_m,
+                     p.pose.theta_rad);
       std::fclose(f);
     }
   }

@@ -38,6 +38,18 @@ TEST(CarmenLogTest, ParsesFlaserRobotLaserAndOdom) {
   EXPECT_EQ(log.skipped_lines, 1);
 }
 
+TEST(CarmenLogTest, OdometryIsInterpolatedAtTheScanTime) {
+  CarmenLog log;
+  ASSERT_TRUE(ParseCarmenLine("ODOM 0 0 0 0 0 0 10.0 h 10.0", 1, {}, log).ok());
+  ASSERT_TRUE(ParseCarmenLine("FLASER 2 1 1 0 0 0 0 0 0 10.05 h 10.05", 2, {}, log).ok());
+  ASSERT_TRUE(ParseCarmenLine("ODOM 0.1 0 0.2 0 0 0 10.1 h 10.1", 3, {}, log).ok());
+  ASSERT_TRUE(ParseCarmenLine("FLASER 2 1 1 0 0 0 0 0 0 10.5 h 10.5", 4, {}, log).ok());
+  EXPECT_EQ(InterpolateOdometryAtScans(log), 1);  // the second scan lies after the last ODOM
+  EXPECT_NEAR(log.lasers[0].odom_pose.theta_rad, 0.1, 1e-9);
+  EXPECT_NEAR(log.lasers[0].odom_pose.x_m, 0.05, 2e-3);  // half way along a slight arc
+  EXPECT_EQ(log.lasers[1].odom_pose.x_m, 0.0);           // kept as logged
+}
+
 TEST(CarmenLogTest, MalformedLinesNameTheirNumber) {
   CarmenLog log;
   EXPECT_THAT(ParseCarmenLine("FLASER 3 1.0 2.0", 7, {}, log).message(), HasSubstr("line 7"));

@@ -36,6 +36,12 @@ struct CarmenReadOptions {
   int64_t max_file_bytes = int64_t{1} << 31;
 };
 
+// Replaces each laser record's odometry pose by the ODOM lines interpolated at the scan's time
+// stamp: the pose embedded in FLASER lines is the last ODOM before the scan, up to one odometry
+// period stale. Scans outside the ODOM lines' time span keep their pose. Returns how many
+// records were interpolated.
+int InterpolateOdometryAtScans(CarmenLog& log);
+
 core::Result<CarmenLog> ReadCarmenLog(const std::string& path,
                                       const CarmenReadOptions& options = {});
 // One line; `line_number` only for messages. Returns true when the line held a laser.
