@@ -10,15 +10,6 @@ OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, LogOddsLimits limits)
   cells_.assign(static_cast<size_t>(geometry.num_cells()), 0.0f);
 }
 
-void OccupancyGrid::SetLogOdds(const CellIndex& c, float value) {
-  cells_[geometry_.Index(c)] = std::clamp(value, limits_.min_log_odds, limits_.max_log_odds);
-}
-
-void OccupancyGrid::AddLogOdds(const CellIndex& c, float delta) {
-  float& cell = cells_[geometry_.Index(c)];
-  cell = std::clamp(cell + delta, limits_.min_log_odds, limits_.max_log_odds);
-}
-
 CellState OccupancyGrid::state(const CellIndex& c, const OccupancyThresholds& t) const {
   return TriStateClassifier(t)(log_odds(c));
 }

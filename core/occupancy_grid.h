@@ -2,6 +2,7 @@
 // temporary map are one of these. 0 means never observed (unknown).
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "core/grid_geometry.h"
@@ -20,9 +21,15 @@ class OccupancyGrid {
 
   float log_odds(const CellIndex& c) const { return cells_[geometry_.Index(c)]; }
   // Stores `value` clamped to the limits.
-  void SetLogOdds(const CellIndex& c, float value);
+  void SetLogOdds(const CellIndex& c, float value) {
+    cells_[geometry_.Index(c)] = std::clamp(value, limits_.min_log_odds, limits_.max_log_odds);
+  }
   // Adds evidence (positive: occupied, negative: free), clamped. The Bayes update in log form.
-  void AddLogOdds(const CellIndex& c, float delta);
+  // Inline: map updates call it for every cell every beam crosses.
+  void AddLogOdds(const CellIndex& c, float delta) {
+    float& cell = cells_[geometry_.Index(c)];
+    cell = std::clamp(cell + delta, limits_.min_log_odds, limits_.max_log_odds);
+  }
   double probability(const CellIndex& c) const { return LogOddsToProbability(log_odds(c)); }
 
   CellState state(const CellIndex& c, const OccupancyThresholds& t = {}) const;

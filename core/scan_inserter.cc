@@ -6,11 +6,38 @@
 namespace fleetmap::core {
 namespace {
 
+// Clips the segment a->b (continuous cell coordinates) to the grid's rectangle (Liang and
+// Barsky); false when it misses the grid entirely.
+bool ClipToGrid(const GridGeometry& g, Eigen::Vector2d& a, Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  double t0 = 0.0, t1 = 1.0;
+  const double lo[2] = {0.0, 0.0}, hi[2] = {g.width() - 1e-9, g.height() - 1e-9};
+  for (int axis = 0; axis < 2; ++axis) {
+    if (std::abs(d[axis]) < 1e-15) {
+      if (a[axis] < lo[axis] || a[axis] > hi[axis]) return false;
+      continue;
+    }
+    double ta = (lo[axis] - a[axis]) / d[axis], tb = (hi[axis] - a[axis]) / d[axis];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  const Eigen::Vector2d start = a;
+  a = start + t0 * d;
+  b = start + t1 * d;
+  return true;
+}
+
 // Walks the cells from `from` towards `to` (exclusive), in continuous cell coordinates,
-// calling fn(cell) for each cell inside the grid (Amanatides and Woo).
+// calling fn(cell) for each cell inside the grid (Amanatides and Woo). The segment is clipped
+// to the grid first, so the part of a beam outside the grid costs nothing.
 template <typename Fn>
-int WalkCells(const GridGeometry& g, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
-              Fn fn) {
+int WalkCells(const GridGeometry& g, Eigen::Vector2d from, Eigen::Vector2d to, Fn fn) {
+  const Eigen::Vector2d original_to = to;
+  if (!ClipToGrid(g, from, to)) return 0;
+  // A clipped end is not the beam's end: its cell is crossed too, so step just past it.
+  if ((to - original_to).squaredNorm() > 1e-18) to += (to - from).normalized() * 1e-6;
   const Eigen::Vector2d d = to - from;
   const double length = d.norm();
   if (length < 1e-12) return 0;

@@ -25,9 +25,9 @@ class MapInterpolator {
   double Probability(int x, int y) const;
 
   const core::OccupancyGrid* grid_;
-  // log-odds -> probability, sampled over the grid's clamping range (exp per lookup is the
-  // matcher's hottest cost otherwise).
-  std::array<float, 1024> table_;
+  // log-odds -> probability, sampled over the grid's clamping range (exp per lookup would be
+  // the matcher's hottest cost); shared by every interpolator over the same limits.
+  const std::array<float, 1024>* table_;
   float table_min_, table_scale_;
 };
 

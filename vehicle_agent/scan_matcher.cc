@@ -33,6 +33,14 @@ NormalEquations Accumulate(const MapInterpolator& map, const std::vector<Eigen::
   return ne;
 }
 
+std::vector<Eigen::Vector2d> Thin(const std::vector<Eigen::Vector2d>& points, int stride) {
+  if (stride <= 1) return points;
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size() / stride + 1);
+  for (size_t i = 0; i < points.size(); i += static_cast<size_t>(stride)) out.push_back(points[i]);
+  return out;
+}
+
 Eigen::Matrix3d PriorInformation(const ScanMatcherOptions& o, const core::Pose2& motion) {
   if (o.prior_sigma_xy_m <= 0 || o.prior_sigma_theta_rad <= 0) return Eigen::Matrix3d::Zero();
   const double xy =
@@ -64,9 +72,11 @@ MatchResult MatchScan(const MultiResolutionMap& map, const std::vector<Eigen::Ve
   const double weight = 1.0 / (options.sigma_map * options.sigma_map);
   for (int level = map.levels() - 1; level >= 0; --level) {
     const MapInterpolator interpolator(&map.level(level));
+    // Points closer together than a level's cells add nothing there: thin them out.
+    const std::vector<Eigen::Vector2d> thinned = Thin(points, 1 << level);
     const int iterations = level == 0 ? options.fine_iterations : options.coarse_iterations;
     for (int it = 0; it < iterations; ++it) {
-      NormalEquations ne = Accumulate(interpolator, points, result.pose, weight);
+      NormalEquations ne = Accumulate(interpolator, thinned, result.pose, weight * (1 << level));
       const core::Pose2 off =
           core::Pose2(prediction.x_m - result.pose.x_m, prediction.y_m - result.pose.y_m,
                       core::NormalizeAngle(prediction.theta_rad - result.pose.theta_rad));
@@ -79,7 +89,7 @@ MatchResult MatchScan(const MultiResolutionMap& map, const std::vector<Eigen::Ve
       result.pose = core::Pose2(result.pose.x_m + step.x(), result.pose.y_m + step.y(),
                                 core::NormalizeAngle(result.pose.theta_rad + step.z()));
       if (level == 0) result.information = ne.h;
-      if (step.head<2>().norm() < 1e-5 && std::abs(step.z()) < 1e-5) break;
+      if (step.head<2>().norm() < 1e-4 && std::abs(step.z()) < 1e-4) break;  // 0.1 mm
     }
   }
   const core::Pose2 correction = core::Between(prediction, result.pose);
