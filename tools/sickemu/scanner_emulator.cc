@@ -1,0 +1,169 @@
+#include "tools/sickemu/scanner_emulator.h"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include "drivers/sick/commands.h"
+#include "drivers/sick/scan_telegram_codec.h"
+#include "drivers/sick/telegram_splitter.h"
+
+namespace fleetmap::sickemu {
+namespace {
+
+using drivers::sick::ColaProtocol;
+using drivers::sick::TcpConnection;
+
+double SteadyNowS() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+constexpr double kWriteTimeoutS = 2.0;
+
+}  // namespace
+
+core::Status EmulatorOptions::Validate() const {
+  if (port < 0 || port > 65535) return core::InvalidArgument("emulator.port out of range");
+  if (!(speed_factor > 0.0)) return core::InvalidArgument("emulator.speed_factor must be positive");
+  return core::OkStatus();
+}
+
+ScannerEmulator::ScannerEmulator(EmulatorOptions options, std::unique_ptr<ScanSource> source)
+    : options_(std::move(options)), source_(std::move(source)) {}
+
+core::Status ScannerEmulator::Start() {
+  FLEETMAP_RETURN_IF_ERROR(options_.Validate());
+  listen_fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (listen_fd_ < 0) return core::IoError(std::string("socket: ") + std::strerror(errno));
+  const int one = 1;
+  setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(options_.port));
+  if (inet_pton(AF_INET, options_.bind_address.c_str(), &addr.sin_addr) != 1) {
+    return core::InvalidArgument("emulator.bind_address is not an IPv4 address");
+  }
+  if (bind(listen_fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0 ||
+      listen(listen_fd_, 4) != 0) {
+    return core::IoError("cannot listen on " + options_.bind_address + ":" +
+                         std::to_string(options_.port) + ": " + std::strerror(errno));
+  }
+  socklen_t len = sizeof(addr);
+  getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
+  port_ = ntohs(addr.sin_port);
+  thread_ = std::thread([this] { AcceptLoop(); });
+  return core::OkStatus();
+}
+
+void ScannerEmulator::Stop() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  if (listen_fd_ >= 0) close(listen_fd_);
+  listen_fd_ = -1;
+}
+
+void ScannerEmulator::AcceptLoop() {
+  bool first = true;
+  while (!stop_) {
+    pollfd p{listen_fd_, POLLIN, 0};
+    if (poll(&p, 1, 50) <= 0) continue;
+    const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0) continue;
+    TcpConnection client(fd);
+    ++stats_.connections;
+    Serve(client, first);
+    first = false;
+  }
+}
+
+bool ScannerEmulator::Send(TcpConnection& client, const std::string& bytes) {
+  const size_t piece = options_.max_write_bytes > 0 ? options_.max_write_bytes : bytes.size();
+  for (size_t at = 0; at < bytes.size(); at += piece) {
+    if (!client.WriteAll(std::string_view(bytes).substr(at, piece), kWriteTimeoutS).ok()) {
+      return false;
+    }
+    if (piece < bytes.size()) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  return true;
+}
+
+bool ScannerEmulator::SendScan(TcpConnection& client, const char* type) {
+  std::optional<drivers::sick::ScanTelegram> scan = source_->Next();
+  if (!scan) return false;  // exhausted: hang up like a scanner switched off
+  const uint64_t n = ++stats_.scans_sent;
+  std::string bytes = drivers::sick::FrameTelegram(
+      options_.protocol, drivers::sick::EncodeScanTelegram(*scan, options_.protocol, type));
+  if (options_.corrupt_every > 0 && n % options_.corrupt_every == 0) {
+    if (options_.protocol == ColaProtocol::kColaB) {
+      bytes.back() = static_cast<char>(bytes.back() ^ 0x5A);
+    } else {
+      bytes.resize(bytes.size() / 2);  // cut off, the next STX starts over
+    }
+  }
+  if (options_.garbage_every > 0 && n % options_.garbage_every == 0) {
+    bytes = std::string("\x02\x02garbage\x03\xff\x00\x02 noise", 20) + bytes;
+  }
+  return Send(client, bytes);
+}
+
+bool ScannerEmulator::HandleRequest(TcpConnection& client, const std::string& payload,
+                                    bool& logged_in, bool& streaming) {
+  ++stats_.requests;
+  const ColaProtocol p = options_.protocol;
+  core::Result<drivers::sick::ParsedCommand> c = drivers::sick::ParseCommand(payload, p);
+  if (!c.ok()) return Send(client, FrameTelegram(p, drivers::sick::ErrorReply(p, 1)));
+  if (c->type == "sMN" && c->name == "SetAccessMode") {
+    const bool ok = c->value == drivers::sick::kAuthorizedClientLevel &&
+                    c->password == drivers::sick::kAuthorizedClientPasswordHash;
+    logged_in |= ok;
+    if (ok) ++stats_.logins;
+    return Send(client, FrameTelegram(p, drivers::sick::SmallReply(p, "sAN", "SetAccessMode", ok)));
+  }
+  const bool scan_request = c->name == "LMDscandata" && (c->type == "sEN" || c->type == "sRN");
+  if (!scan_request) return Send(client, FrameTelegram(p, drivers::sick::ErrorReply(p, 2)));
+  if (options_.require_login && !logged_in) {
+    return Send(client, FrameTelegram(p, drivers::sick::ErrorReply(p, 3)));
+  }
+  if (c->type == "sRN") return SendScan(client, "sRA");
+  streaming = c->value == 1;
+  return Send(client,
+              FrameTelegram(p, drivers::sick::SmallReply(p, "sEA", "LMDscandata", streaming)));
+}
+
+void ScannerEmulator::Serve(TcpConnection& client, bool first) {
+  drivers::sick::TelegramSplitterOptions splitter_options;
+  splitter_options.protocol = options_.protocol;
+  splitter_options.max_payload_bytes = 4096;
+  drivers::sick::TelegramSplitter requests(splitter_options);
+  bool logged_in = false, streaming = false;
+  size_t sent_here = 0;
+  const double period_s = source_->period_s() / options_.speed_factor;
+  double next_scan_s = SteadyNowS();
+  uint8_t buffer[4096];
+  while (!stop_) {
+    const bool silent =
+        first && options_.silent_after_scans > 0 && sent_here >= options_.silent_after_scans;
+    const double now = SteadyNowS();
+    if (streaming && !silent && now >= next_scan_s) {
+      if (!SendScan(client, "sSN")) return;
+      ++sent_here;
+      next_scan_s = std::max(next_scan_s + period_s, now - period_s);
+      continue;
+    }
+    const double wait = streaming && !silent ? std::min(0.05, next_scan_s - now) : 0.05;
+    core::Result<size_t> n = client.Read(buffer, sizeof(buffer), wait);
+    if (!n.ok()) return;  // the client hung up
+    requests.Feed(buffer, *n);
+    while (std::optional<std::string> payload = requests.Next()) {
+      if (!HandleRequest(client, *payload, logged_in, streaming)) return;
+    }
+  }
+}
+
+}  // namespace fleetmap::sickemu
