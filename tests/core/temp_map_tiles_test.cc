@@ -35,8 +35,12 @@ TEST(TempMapTilesTest, SplitAndAssembleInAnyOrder) {
   for (size_t i = 0; i < tiles.size(); ++i) {
     auto r = assembler.Add(tiles[i]);
     ASSERT_TRUE(r.ok()) << r.status().ToString();
-    if (i + 1 < tiles.size()) EXPECT_FALSE(r->has_value());
-    if (i == 2) EXPECT_EQ(assembler.Received("cts1", 7).size(), 3u);
+    if (i + 1 < tiles.size()) {
+      EXPECT_FALSE(r->has_value());
+    }
+    if (i == 2) {
+      EXPECT_EQ(assembler.Received("cts1", 7).size(), 3u);
+    }
     if (r->has_value()) done = **r;
   }
   ASSERT_TRUE(done.has_value());
