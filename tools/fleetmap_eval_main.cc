@@ -1,6 +1,8 @@
 // fleetmap-eval: runs a scenario through a pipeline in-process and scores it against the
 // simulator's ground truth. See --help.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,6 +12,7 @@
 #include "core/map_render.h"
 #include "tools/eval/eval_figures.h"
 #include "tools/eval/pipeline.h"
+#include "tools/eval/truth_tempmap_pipeline.h"
 
 namespace {
 
@@ -27,7 +30,15 @@ and prints the figures as `eval.<name>.<figure> value unit` lines.
 options:
   --scenario FILE   scenario YAML (required)
   --map FILE        static map (map_server YAML) instead of the one the scenario names
-  --pipeline NAME   oracle (merges exactly what the scanners saw; the reference)  [oracle]
+  --pipeline NAME   oracle: merges exactly what the scanners saw (the reference)   [oracle]
+                    truthmaps: temporary maps a perfect vehicle builds at its true poses,
+                    anchored with a random error, aligned and merged by the aggregator
+  --align-mode MODE truthmaps: ours (dominant directions) or paper (the paper's sequence) [ours]
+  --anchor-error-m M      truthmaps: largest anchor translation error, metres     [0.3]
+  --anchor-error-deg D    truthmaps: largest anchor rotation error, degrees       [3]
+  --confirmations N       truthmaps: temporary maps of different times that must see an
+                          obstacle before it is added: 1 (the paper) or 2         [2]
+  --seed N                truthmaps: added to the scenario's seed for the anchor errors [0]
   --out DIR         output folder                                 [out/eval/<scenario name>]
   --name NAME       name used in the figure lines                 [the scenario's name]
   --quiet           no progress lines on stderr
@@ -37,7 +48,8 @@ usage errors.
 )";
 
 struct Args {
-  std::string scenario, map, pipeline = "oracle", out, name;
+  std::string scenario, map, pipeline = "oracle", out, name, align_mode = "ours";
+  std::string anchor_error_m = "0.3", anchor_error_deg = "3", confirmations = "2", seed = "0";
   bool quiet = false;
 };
 
@@ -54,6 +66,11 @@ bool Parse(int argc, char** argv, Args& a) {
         : arg == "--pipeline" ? !value(a.pipeline)
         : arg == "--out"      ? !value(a.out)
         : arg == "--name"     ? !value(a.name)
+        : arg == "--align-mode"       ? !value(a.align_mode)
+        : arg == "--anchor-error-m"   ? !value(a.anchor_error_m)
+        : arg == "--anchor-error-deg" ? !value(a.anchor_error_deg)
+        : arg == "--confirmations"    ? !value(a.confirmations)
+        : arg == "--seed"             ? !value(a.seed)
         : arg == "--quiet"    ? (a.quiet = true, false)
                               : true) {
       std::fprintf(stderr, "fleetmap-eval: bad or incomplete argument '%s'\n", arg.c_str());
@@ -65,9 +82,51 @@ bool Parse(int argc, char** argv, Args& a) {
 
 void Progress(double t_s) { std::fprintf(stderr, "  simulated %.0f s\n", t_s); }
 
+// Every merge with its outcome and residual against the truth (line tables: report.md).
+std::string MergeTable(const eval::RunRecord& run, double resolution_m) {
+  std::string table =
+      "| vehicle | seq | closed (s) | accepted | added | removed | lines | residual x, y (cells), "
+      "theta (deg) | reason |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const eval::MergeRecord& m : run.merges) {
+    const core::Pose2 e = core::Between(m.true_origin, m.placed_origin);
+    char row[192];
+    std::snprintf(row, sizeof(row), "| %s | %d | %.1f | %s | %d | %d | %zu | %.2f, %.2f, %.3f | ",
+                  m.vehicle_id.c_str(), m.tempmap_seq, m.closed_s, m.accepted ? "yes" : "no",
+                  m.cells_added, m.cells_removed, m.lines.size(), e.x_m / resolution_m,
+                  e.y_m / resolution_m, e.theta_rad * 180 / M_PI);
+    table += row + m.reason + " |\n";
+  }
+  return table;
+}
+
 int Fail(const core::Status& s) {
   std::fprintf(stderr, "fleetmap-eval: %s\n", s.ToString().c_str());
   return 1;
+}
+
+// A number from the command line, or NaN.
+double Number(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  return end && *end == '\0' && !text.empty() ? v : std::nan("");
+}
+
+// The pipeline the arguments name, or a usage error (exit 2) / another error (exit 1).
+core::Result<std::unique_ptr<eval::Pipeline>> MakePipeline(const Args& args,
+                                                           const sim::World& world) {
+  if (args.pipeline == "oracle") return eval::MakeOraclePipeline();
+  eval::TruthTempMapOptions options;
+  FLEETMAP_ASSIGN_OR_RETURN(options.aggregator.alignment.mode,
+                            aggregator::ParseAlignmentMode(args.align_mode));
+  options.anchor_error_max_m = Number(args.anchor_error_m);
+  options.anchor_error_max_rad = Number(args.anchor_error_deg) * M_PI / 180.0;
+  const double seed = Number(args.seed);
+  if (!(seed >= 0 && seed < 4e9 && seed == std::floor(seed)))
+    return core::InvalidArgument("--seed needs a whole number >= 0");
+  options.seed = static_cast<uint32_t>(seed);
+  const double confirmations = Number(args.confirmations);
+  options.aggregator.merge.confirmations = confirmations == 1.0 ? 1 : confirmations == 2.0 ? 2 : 0;
+  return eval::MakeTruthTempMapPipeline(world, options);
 }
 
 void Figure(const std::string& name, const char* figure, double value, const char* unit) {
@@ -88,8 +147,8 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, stderr);
     return 2;
   }
-  if (args.pipeline != "oracle") {
-    std::fprintf(stderr, "fleetmap-eval: unknown pipeline '%s' (known: oracle)\n",
+  if (args.pipeline != "oracle" && args.pipeline != "truthmaps") {
+    std::fprintf(stderr, "fleetmap-eval: unknown pipeline '%s' (known: oracle, truthmaps)\n",
                  args.pipeline.c_str());
     return 2;
   }
@@ -106,15 +165,20 @@ int main(int argc, char** argv) {
                  args.scenario.c_str(), world->scenario().vehicles.size(),
                  world->scenario().duration_s, args.pipeline.c_str());
   }
+  auto pipeline = MakePipeline(args, *world);
+  if (!pipeline.ok()) {
+    std::fprintf(stderr, "fleetmap-eval: %s\n", pipeline.status().ToString().c_str());
+    return pipeline.status().code() == core::StatusCode::kInvalidArgument ? 2 : 1;
+  }
   sim::Simulator simulator(&*world);
-  auto pipeline = eval::MakeOraclePipeline();
   const eval::RunRecord run =
-      eval::RunScenario(*world, *pipeline, simulator, args.quiet ? nullptr : Progress);
+      eval::RunScenario(*world, **pipeline, simulator, args.quiet ? nullptr : Progress);
   const eval::EvalReport report = eval::Evaluate(*world, simulator.observations(), run);
 
   for (const core::Status& s :
        {core::WriteFileAtomically(out + "/report.json", eval::ReportJson(report)),
         core::WriteFileAtomically(out + "/report.md", eval::ReportMarkdown(report)),
+        core::WriteFileAtomically(out + "/merges.md", MergeTable(run, world->geometry().resolution_m())),
         core::SaveMapServerMap(run.final_map, out + "/current_map.yaml"),
         core::RenderGridToPng(run.final_map, out + "/current_map.png"),
         eval::WriteOverlayPng(*world, simulator.observations(), run, out + "/map_overlay.png"),
@@ -130,6 +194,11 @@ int main(int argc, char** argv) {
   Figure(name, "align_trans_p95_cells", report.align_translation_cells.p95, "cells");
   Figure(name, "align_rot_p95_deg", report.align_rotation_deg.p95, "deg");
   Figure(name, "detect_latency_median_s", report.detection_latency_s.median, "s");
+  Figure(name, "align_trans_max_cells", report.align_translation_cells.max, "cells");
+  Figure(name, "align_rot_median_deg", report.align_rotation_deg.median, "deg");
+  Figure(name, "align_rot_max_deg", report.align_rotation_deg.max, "deg");
+  Figure(name, "merges_accepted", report.merges_accepted, "merges");
+  Figure(name, "merges_rejected", report.merges_rejected, "merges");
   if (!args.quiet)
     std::fprintf(stderr, "fleetmap-eval: wrote %s/report.json and figures\n", out.c_str());
   return 0;

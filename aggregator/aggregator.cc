@@ -1,0 +1,154 @@
+#include "aggregator/aggregator.h"
+
+#include <cmath>
+
+#include "aggregator/alignment_steps.h"
+
+namespace fleetmap::aggregator {
+namespace {
+
+// Centres of the set pixels, in the frame the grid's geometry is expressed in.
+std::vector<Eigen::Vector2d> EdgePoints(const BinaryImage& edges, const core::GridGeometry& g) {
+  const core::Pose2& o = g.origin();
+  const double c = std::cos(o.theta_rad), s = std::sin(o.theta_rad), res = g.resolution_m();
+  std::vector<Eigen::Vector2d> points;
+  for (int y = 0; y < edges.height; ++y) {
+    for (int x = 0; x < edges.width; ++x) {
+      if (!edges.at(x, y)) continue;
+      const double gx = (x + 0.5) * res, gy = (y + 0.5) * res;
+      points.emplace_back(o.x_m + c * gx - s * gy, o.y_m + s * gx + c * gy);
+    }
+  }
+  return points;
+}
+
+std::vector<LineReportRow> Rows(const AlignmentResult& a, double resolution_m) {
+  std::vector<LineReportRow> rows;
+  for (const LineMatch& m : a.matches) {
+    rows.push_back({m.temp_index, m.static_index, std::abs(m.offset_m) / resolution_m,
+                    m.angle_diff_rad * 180.0 / M_PI});
+  }
+  return rows;
+}
+
+}  // namespace
+
+core::Status AggregatorOptions::Validate() const {
+  FLEETMAP_RETURN_IF_ERROR(placement.Validate());
+  FLEETMAP_RETURN_IF_ERROR(temp_lines.Validate());
+  FLEETMAP_RETURN_IF_ERROR(static_features.Validate());
+  FLEETMAP_RETURN_IF_ERROR(alignment.Validate());
+  FLEETMAP_RETURN_IF_ERROR(confidence.Validate());
+  FLEETMAP_RETURN_IF_ERROR(merge.Validate());
+  FLEETMAP_RETURN_IF_ERROR(store.Validate());
+  return persistence.Validate();
+}
+
+core::Result<Aggregator> Aggregator::Create(core::OccupancyGrid static_map,
+                                            const AggregatorOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  FLEETMAP_RETURN_IF_ERROR(static_map.geometry().Validate().WithContext("static map"));
+  auto features = StaticMapFeatures::Compute(static_map, options.static_features);
+  if (!features.ok()) return features.status();
+  CurrentMapStore store(std::move(static_map), options.store);
+  return Aggregator(options, std::move(features).value(), std::move(store));
+}
+
+core::Result<Aggregator> Aggregator::Open(core::OccupancyGrid static_map,
+                                          const AggregatorOptions& options,
+                                          const std::string& state_folder, RestoreReport* report) {
+  auto aggregator = Create(std::move(static_map), options);
+  if (!aggregator.ok()) return aggregator.status();
+  auto persistence =
+      MapPersistence::Open(state_folder, aggregator->store_, options.persistence, report);
+  if (!persistence.ok()) return persistence.status();
+  aggregator->persistence_.emplace(std::move(persistence).value());
+  return aggregator;
+}
+
+Assessment Aggregator::Assess(const core::TempMap& map) const {
+  Assessment a;
+  core::Status input = CheckTempMap(map, features_.geometry(), options_.placement);
+  auto lines = input.ok() ? ExtractLineFeatures(map.grid, options_.temp_lines)
+                          : core::Result<LineFeatures>(input);
+  if (!lines.ok()) {
+    a.reason = RejectReason::kInvalidTempMap;
+    a.reason_text = lines.status().ToString();
+    return a;
+  }
+  AlignmentInput in{lines->lines, EdgePoints(lines->edges, map.grid.geometry()),
+                    map.anchor_in_map};
+  a.temp_lines = static_cast<int>(in.temp_lines.size());
+  a.alignment = Align(in, features_, options_.alignment);
+  const auto points = Subsample(in.temp_points, options_.alignment.max_search_points);
+  const double before = ExplainedFraction(features_, PlacePoints(points, in.anchor));
+  const double after =
+      ExplainedFraction(features_, PlacePoints(points, a.alignment.correction * in.anchor));
+  a.confidence = AssessAlignment(a.alignment, features_.geometry().resolution_m(), before, after,
+                                 options_.confidence);
+  a.reason = a.confidence.reason;
+  a.reason_text = a.confidence.explanation;
+  return a;
+}
+
+MergeReport Aggregator::Rejected(const core::TempMap& map, const Assessment& assessment) {
+  MergeReport r;
+  r.vehicle_id = map.vehicle_id;
+  r.tempmap_sequence = map.sequence;
+  r.reason = assessment.reason;
+  r.reason_text = assessment.reason_text;
+  r.alignment = assessment.alignment;
+  r.confidence = assessment.confidence;
+  r.version = store_.version();
+  ++stats_.rejected;
+  ++stats_.rejected_by_reason[static_cast<size_t>(assessment.reason)];
+  return r;
+}
+
+core::Result<MergeReport> Aggregator::Commit(const core::TempMap& map,
+                                             const Assessment& assessment, double now_s) {
+  if (!assessment.accepted()) return Rejected(map, assessment);
+  const core::Pose2& correction = assessment.alignment.correction;
+  const PlacedEvidence evidence = PlaceEvidence(map, correction, store_.static_map().geometry());
+  const MergeInputs inputs{&addable_, &store_.semi_static(), &store_.candidates(),
+                           &store_.candidate_mask()};
+  const MergePlan plan =
+      PlanMerge(evidence, {map.start_s, map.end_s}, inputs, options_.merge);
+  MergeCommit commit{store_.version() + 1,
+                     {map.vehicle_id, map.sequence, map.start_s, map.end_s, now_s},
+                     correction,
+                     plan.changes};
+  FLEETMAP_RETURN_IF_ERROR(store_.Check(commit));
+  if (persistence_) FLEETMAP_RETURN_IF_ERROR(persistence_->Record(commit));
+  MergeReport r;
+  FLEETMAP_ASSIGN_OR_RETURN(r.delta, store_.Apply(std::move(commit)));
+  r.vehicle_id = map.vehicle_id;
+  r.tempmap_sequence = map.sequence;
+  r.accepted = true;
+  r.correction = correction;
+  r.alignment = assessment.alignment;
+  r.confidence = assessment.confidence;
+  r.lines = Rows(assessment.alignment, store_.static_map().geometry().resolution_m());
+  r.cells_added = plan.added;
+  r.cells_removed = plan.removed;
+  r.candidates_new = plan.candidates;
+  r.candidates_dropped = plan.dropped;
+  r.version = store_.version();
+  ++stats_.accepted;
+  if (persistence_ && persistence_->SnapshotDue()) {
+    const core::Status s = persistence_->Snapshot(store_);
+    if (!s.ok()) r.warning = "merge journaled, snapshot failed: " + s.ToString();
+  }
+  return r;
+}
+
+core::Result<MergeReport> Aggregator::Submit(const core::TempMap& map, double now_s) {
+  return Commit(map, Assess(map), now_s);
+}
+
+core::Status Aggregator::WriteSnapshot() {
+  if (!persistence_) return core::FailedPrecondition("the aggregator has no persistence folder");
+  return persistence_->Snapshot(store_);
+}
+
+}  // namespace fleetmap::aggregator

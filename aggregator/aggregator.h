@@ -1,0 +1,126 @@
+// The aggregator: the server's half of the paper as a library (no LCM, no I/O but its own
+// persistence folder). A temporary map is checked, its lines are extracted and matched to
+// the static map's, the correction is computed and judged, and an accepted map is merged
+// into the versioned current map, journaled before it is acknowledged.
+//
+// A rejected map (bad input, or an alignment the evidence does not support) is never
+// merged: the current map, its version and the journal stay untouched, and the report says
+// why. Whoever sent it learns the reason from the acknowledgement (TEMPMAP_ACK) and the
+// MERGE_REPORT; a vehicle that keeps seeing the change builds a new temporary map, which
+// then usually holds more of the building's lines. Counts per reason are kept in stats().
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "aggregator/alignment_confidence.h"
+#include "aggregator/current_map_store.h"
+#include "aggregator/map_persistence.h"
+#include "aggregator/merge.h"
+#include "aggregator/placement.h"
+#include "aggregator/static_features.h"
+
+namespace fleetmap::aggregator {
+
+struct AggregatorOptions {
+  PlacementOptions placement;
+  LineFeatureOptions temp_lines;          // line extraction of temporary maps
+  StaticFeatureOptions static_features;   // line extraction and overlap fields of the static map
+  AlignmentOptions alignment;
+  ConfidenceOptions confidence;
+  MergeOptions merge;
+  StoreOptions store;
+  PersistenceOptions persistence;         // used by Open only
+  core::Status Validate() const;
+};
+
+// One row of the paper's Tables 1 and 2.
+struct LineReportRow {
+  int temp_line_id = 0;    // index into the temporary map's segments
+  int static_line_id = 0;  // index into StaticMapFeatures::lines()
+  double distance_diff_px = 0.0;  // |normal distance| after the correction, cells
+  double angle_diff_deg = 0.0;    // static minus corrected temporary angle
+};
+
+// Everything up to the decision; computing it changes nothing.
+struct Assessment {
+  RejectReason reason = RejectReason::kNone;
+  std::string reason_text;
+  AlignmentResult alignment;
+  AlignmentConfidence confidence;
+  int temp_lines = 0;  // segments found in the temporary map
+  bool accepted() const { return reason == RejectReason::kNone; }
+};
+
+struct MergeReport {
+  std::string vehicle_id;
+  int32_t tempmap_sequence = 0;
+  bool accepted = false;
+  RejectReason reason = RejectReason::kNone;
+  std::string reason_text;
+  core::Pose2 correction;  // placed = correction * anchor
+  AlignmentResult alignment;
+  AlignmentConfidence confidence;
+  std::vector<LineReportRow> lines;
+  int cells_added = 0;
+  int cells_removed = 0;
+  int candidates_new = 0;      // cells seen occupied for the first time (merge.h)
+  int candidates_dropped = 0;  // candidates seen free
+  uint64_t version = 0;  // the current map's version after this report
+  MapDelta delta;        // version - 1 -> version; empty when rejected
+  std::string warning;   // e.g. a snapshot that failed after the merge was journaled
+};
+
+struct AggregatorStats {
+  int accepted = 0;
+  int rejected = 0;
+  std::array<int, 8> rejected_by_reason{};  // indexed by RejectReason
+};
+
+class Aggregator {
+ public:
+  // In memory only. Fails on invalid options or a static map without usable geometry.
+  static core::Result<Aggregator> Create(core::OccupancyGrid static_map,
+                                         const AggregatorOptions& options);
+  // With persistence in `state_folder`: restores the current map from its snapshot and
+  // journal (see map_persistence.h) and journals every accepted merge.
+  static core::Result<Aggregator> Open(core::OccupancyGrid static_map,
+                                       const AggregatorOptions& options,
+                                       const std::string& state_folder,
+                                       RestoreReport* report = nullptr);
+
+  // Checks, extracts lines, aligns and judges. Never changes anything.
+  Assessment Assess(const core::TempMap& map) const;
+  // Merges an accepted assessment of `map` (from Assess on the same map): journal first
+  // (IoError: nothing happened), then the current map. A rejected one gives its report.
+  core::Result<MergeReport> Commit(const core::TempMap& map, const Assessment& assessment,
+                                   double now_s);
+  // Assess, then Commit. `now_s` is recorded as the merge time (time is passed in).
+  core::Result<MergeReport> Submit(const core::TempMap& map, double now_s);
+
+  // Writes a snapshot now (persistence only; FailedPrecondition without).
+  core::Status WriteSnapshot();
+
+  const CurrentMapStore& store() const { return store_; }
+  const StaticMapFeatures& static_features() const { return features_; }
+  const AggregatorOptions& options() const { return options_; }
+  const AggregatorStats& stats() const { return stats_; }
+
+ private:
+  Aggregator(AggregatorOptions options, StaticMapFeatures features, CurrentMapStore store)
+      : options_(std::move(options)),
+        features_(std::move(features)),
+        store_(std::move(store)),
+        addable_(AddableCells(store_.static_map(), options_.merge)) {}
+  MergeReport Rejected(const core::TempMap& map, const Assessment& assessment);
+
+  AggregatorOptions options_;
+  StaticMapFeatures features_;
+  CurrentMapStore store_;
+  std::vector<uint8_t> addable_;  // AddableCells of the static map
+  std::optional<MapPersistence> persistence_;
+  AggregatorStats stats_;
+};
+
+}  // namespace fleetmap::aggregator

@@ -1,0 +1,199 @@
+#include "aggregator/merge.h"
+
+#include <algorithm>
+#include <cassert>
+#include <optional>
+
+namespace fleetmap::aggregator {
+namespace {
+
+void Grow(core::CellWindow& w, int x, int y) {
+  if (w.width == 0) {
+    w = {x, y, 1, 1};
+    return;
+  }
+  const int x1 = std::max(w.x0 + w.width, x + 1), y1 = std::max(w.y0 + w.height, y + 1);
+  w.x0 = std::min(w.x0, x), w.y0 = std::min(w.y0, y);
+  w.width = x1 - w.x0, w.height = y1 - w.y0;
+}
+
+// Decides every cell of the evidence window (phase 2 of the merge), reading the current map
+// through `in` and writing nothing but the plan.
+class Planner {
+ public:
+  Planner(const PlacedEvidence& e, const TimeSpan& span, const MergeInputs& in,
+          const MergeOptions& o)
+      : e_(e), w_(e.window), span_(span), in_(in), o_(o) {}
+
+  MergePlan Run() {
+    std::vector<std::optional<CellChangeKind>> decided(static_cast<size_t>(w_.num_cells()));
+    for (int y = w_.y0; y < w_.y0 + w_.height; ++y)
+      for (int x = w_.x0; x < w_.x0 + w_.width; ++x) decided[Local(x, y)] = Decide(x, y);
+    if (o_.confirmations > 1) GrowConfirmed(decided);
+    return Collect(decided);
+  }
+
+ private:
+  size_t Local(int x, int y) const {
+    return static_cast<size_t>(y - w_.y0) * w_.width + (x - w_.x0);
+  }
+  size_t Global(int x, int y) const { return static_cast<size_t>(y) * e_.map_width + x; }
+  bool InWindow(int x, int y) const {
+    return x >= w_.x0 && y >= w_.y0 && x < w_.x0 + w_.width && y < w_.y0 + w_.height;
+  }
+  bool Semi(int x, int y) const { return (*in_.semi_static)[Global(x, y)] != 0; }
+  bool Candidate(int x, int y) const { return (*in_.candidate_mask)[Global(x, y)] != 0; }
+  bool Strong(int x, int y) const { return e_.at({x, y}) >= o_.add_min_log_odds; }
+
+  // Calls fn(nx, ny) for the cells within r of (x, y) inside the window, not (x, y) itself,
+  // until it returns true; returns whether it did.
+  template <typename Fn>
+  bool AnyNear(int x, int y, int r, Fn fn) const {
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx)
+        if ((dx || dy) && InWindow(x + dx, y + dy) && fn(x + dx, y + dy)) return true;
+    return false;
+  }
+
+  // Occupied in this map where an obstacle may be, and not an isolated return.
+  bool Seen(int x, int y) const {
+    if (!Strong(x, y) || !(*in_.addable)[Global(x, y)]) return false;
+    int neighbours = 0;
+    AnyNear(x, y, 1, [&](int nx, int ny) {
+      neighbours += Strong(nx, ny);
+      return false;
+    });
+    return neighbours >= o_.min_occupied_neighbours;
+  }
+
+  // A candidate near (x, y) seen by a map at least confirm_min_gap_s away in time.
+  bool EarlierSightingNear(int x, int y) const {
+    auto confirms = [&](int nx, int ny) {
+      return Candidate(nx, ny) &&
+             !in_.candidates->at(static_cast<int64_t>(Global(nx, ny))).Near(span_, o_.confirm_min_gap_s);
+    };
+    return confirms(x, y) || AnyNear(x, y, o_.confirm_radius_cells, confirms);
+  }
+
+  // A semi-static cell is removed when seen free, with nothing occupied next to it and every
+  // semi-static neighbour seen free as well (a map a little off may see a strip of a pallet
+  // that is still there free; one taken away leaves its whole neighbourhood free).
+  std::optional<CellChangeKind> DecideSemiStatic(int x, int y) const {
+    const int r = o_.removal_clearance_cells;
+    if (e_.at({x, y}) > o_.remove_max_log_odds) return std::nullopt;
+    const bool blocked = AnyNear(x, y, r, [&](int nx, int ny) {
+      return Strong(nx, ny) || (Semi(nx, ny) && e_.at({nx, ny}) >= 0.0f);
+    });
+    return blocked ? std::nullopt : std::optional(CellChangeKind::kRemoved);
+  }
+
+  std::optional<CellChangeKind> Decide(int x, int y) const {
+    if (Semi(x, y)) return DecideSemiStatic(x, y);
+    const bool candidate = Candidate(x, y);
+    if (candidate && e_.at({x, y}) <= o_.remove_max_log_odds) return CellChangeKind::kCandidateDropped;
+    const bool seen = Seen(x, y);
+    if (o_.confirmations <= 1) return seen ? std::optional(CellChangeKind::kAdded) : std::nullopt;
+    if (seen && EarlierSightingNear(x, y)) return CellChangeKind::kAdded;
+    // A candidate whose neighbourhood this map sees occupied at another time.
+    if (candidate && EarlierSightingNear(x, y) &&
+        AnyNear(x, y, o_.confirm_radius_cells, [&](int nx, int ny) { return Strong(nx, ny); })) {
+      return CellChangeKind::kAdded;
+    }
+    if (seen && !candidate) return CellChangeKind::kCandidate;
+    return std::nullopt;
+  }
+
+  // Cells this map sees occupied that connect (through other such cells) to a confirmed
+  // obstacle belong to it: another face of the same pallet, seen once. They are added too.
+  void GrowConfirmed(std::vector<std::optional<CellChangeKind>>& decided) const {
+    std::vector<std::pair<int, int>> stack;
+    for (int y = w_.y0; y < w_.y0 + w_.height; ++y)
+      for (int x = w_.x0; x < w_.x0 + w_.width; ++x)
+        if (Semi(x, y) || decided[Local(x, y)] == CellChangeKind::kAdded) stack.emplace_back(x, y);
+    while (!stack.empty()) {
+      const auto [x, y] = stack.back();
+      stack.pop_back();
+      AnyNear(x, y, o_.confirm_radius_cells, [&](int nx, int ny) {
+        auto& d = decided[Local(nx, ny)];
+        if (Semi(nx, ny) || d == CellChangeKind::kAdded || !Seen(nx, ny)) return false;
+        d = CellChangeKind::kAdded;
+        stack.emplace_back(nx, ny);
+        return false;
+      });
+    }
+  }
+
+  MergePlan Collect(const std::vector<std::optional<CellChangeKind>>& decided) const {
+    MergePlan plan;
+    for (int y = w_.y0; y < w_.y0 + w_.height; ++y) {
+      for (int x = w_.x0; x < w_.x0 + w_.width; ++x) {
+        const auto kind = decided[Local(x, y)];
+        if (!kind) continue;
+        plan.changes.push_back({static_cast<int64_t>(Global(x, y)), *kind});
+        switch (*kind) {
+          case CellChangeKind::kAdded: ++plan.added, Grow(plan.dirty, x, y); break;
+          case CellChangeKind::kRemoved: ++plan.removed, Grow(plan.dirty, x, y); break;
+          case CellChangeKind::kCandidate: ++plan.candidates; break;
+          case CellChangeKind::kCandidateDropped: ++plan.dropped; break;
+        }
+      }
+    }
+    return plan;
+  }
+
+  const PlacedEvidence& e_;
+  const core::CellWindow& w_;
+  TimeSpan span_;
+  const MergeInputs& in_;
+  const MergeOptions& o_;
+};
+
+}  // namespace
+
+core::Status MergeOptions::Validate() const {
+  FLEETMAP_RETURN_IF_ERROR(thresholds.Validate());
+  if (!(add_min_log_odds > 0)) return core::InvalidArgument("merge.add_min_log_odds must be > 0");
+  if (!(remove_max_log_odds < 0))
+    return core::InvalidArgument("merge.remove_max_log_odds must be < 0");
+  if (static_clearance_cells < 0 || static_clearance_cells > 10)
+    return core::InvalidArgument("merge.static_clearance_cells must be in [0, 10]");
+  if (min_occupied_neighbours < 0 || min_occupied_neighbours > 8)
+    return core::InvalidArgument("merge.min_occupied_neighbours must be in [0, 8]");
+  if (removal_clearance_cells < 0 || removal_clearance_cells > 10)
+    return core::InvalidArgument("merge.removal_clearance_cells must be in [0, 10]");
+  if (confirmations < 1 || confirmations > 2)
+    return core::InvalidArgument("merge.confirmations must be 1 or 2");
+  if (confirm_radius_cells < 0 || confirm_radius_cells > 3)
+    return core::InvalidArgument("merge.confirm_radius_cells must be in [0, 3]");
+  if (!(confirm_min_gap_s >= 0))
+    return core::InvalidArgument("merge.confirm_min_gap_s must be >= 0");
+  return core::OkStatus();
+}
+
+std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
+                                  const MergeOptions& options) {
+  const core::TriStateClassifier classify(options.thresholds);
+  const int w = static_map.geometry().width(), h = static_map.geometry().height();
+  const int r = options.static_clearance_cells;
+  const std::vector<float>& cells = static_map.cells();
+  std::vector<uint8_t> addable(cells.size(), 0);
+  for (size_t i = 0; i < cells.size(); ++i)
+    addable[i] = classify(cells[i]) == core::CellState::kFree;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (classify(cells[static_cast<size_t>(y) * w + x]) != core::CellState::kOccupied) continue;
+      for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
+        for (int nx = std::max(0, x - r); nx <= std::min(w - 1, x + r); ++nx)
+          addable[static_cast<size_t>(ny) * w + nx] = 0;
+    }
+  }
+  return addable;
+}
+
+MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span,
+                    const MergeInputs& inputs, const MergeOptions& options) {
+  assert(inputs.addable && inputs.semi_static && inputs.candidates && inputs.candidate_mask);
+  return Planner(evidence, span, inputs, options).Run();
+}
+
+}  // namespace fleetmap::aggregator

@@ -1,0 +1,92 @@
+// The merge rules (DESIGN.md, the paper Sec. 3.4): a cell the temporary map observed
+// occupied where the static map is free becomes a semi-static obstacle; a semi-static cell
+// it observed free with enough evidence is removed; static cells never change. Planned in
+// two phases like nav2's layered costmap: the placed map's window bounds the work, then only
+// cells inside it are decided, so the delta covers only the tiles that really changed.
+//
+// Semi-static means still there later. With confirmations = 2 (the default) a cell first
+// seen occupied becomes a candidate, and only a temporary map of another time (their time
+// spans lie confirm_min_gap_s apart) that sees it, or a cell next to it, occupied again adds it; so does
+// a confirmed obstacle next to it (another face of the same pallet). A candidate seen free
+// is dropped. A person or a forklift is never at the same place in two such maps, a pallet
+// is. confirmations = 1 adds at first sight, as the paper does.
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "aggregator/merge_commit.h"
+#include "aggregator/placement.h"
+#include "core/occupancy_grid.h"
+
+namespace fleetmap::aggregator {
+
+struct MergeOptions {
+  // Temporary log-odds at or above this add an obstacle (> 0). 1.5 needs one clean hit
+  // (2.2) or a majority of hits; a single hit crossed by two later beams stays out.
+  float add_min_log_odds = 1.5f;
+  // At or below this a semi-static obstacle is removed (< 0): about five free observations
+  // (0.4 each) more than hits.
+  float remove_max_log_odds = -2.0f;
+  // Cells this close (Chebyshev, cells) to an occupied static cell are never added: range
+  // noise and a fraction of a cell of alignment error put a wall's hits onto the free cells
+  // in front of it, which are no obstacle. 0..10.
+  int static_clearance_cells = 2;
+  // An added cell needs this many of its 8 neighbours at add_min_log_odds too, so an
+  // isolated hit (a mixed pixel at a depth edge) is no obstacle. 0..8.
+  int min_occupied_neighbours = 1;
+  // A semi-static cell is removed only when no cell this close (Chebyshev) holds evidence
+  // at add_min_log_odds and every semi-static cell this close is seen free (< 0) too: the
+  // edge of an obstacle that is still there flickers between hit and passed, and a map a
+  // little off may see a strip of it free; an obstacle taken away leaves its whole
+  // neighbourhood free. 0..10.
+  int removal_clearance_cells = 1;
+  // Temporary maps of different times that must see a cell occupied before it is added:
+  // 1 (the paper: at first sight) or 2 (a candidate first, see above).
+  int confirmations = 2;
+  // A confirmation may come from evidence this close (Chebyshev, cells): the edge of a
+  // pallet seen from another side or another grid phase falls into the next cell. 0..3.
+  int confirm_radius_cells = 1;
+  // The two maps must lie at least this far apart in time, seconds >= 0: consecutive maps
+  // of one vehicle touch, and a person walking past at that moment is in both.
+  double confirm_min_gap_s = 2.0;
+  core::OccupancyThresholds thresholds;  // classify the static map's cells
+  core::Status Validate() const;
+};
+
+// Per static cell: 1 where an obstacle may be added (free, and clear of static cells).
+std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
+                                  const MergeOptions& options);
+
+// When a temporary map was built, seconds.
+struct TimeSpan {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  // Whether the spans overlap or lie less than `gap_s` apart.
+  bool Near(const TimeSpan& o, double gap_s) const {
+    return start_s < o.end_s + gap_s && o.start_s < end_s + gap_s;
+  }
+};
+
+// What the merge reads of the current map.
+struct MergeInputs {
+  const std::vector<uint8_t>* addable = nullptr;      // AddableCells of the static map
+  const std::vector<uint8_t>* semi_static = nullptr;  // per cell, 1: a semi-static obstacle
+  const std::map<int64_t, TimeSpan>* candidates = nullptr;  // cell -> the map that saw it
+  const std::vector<uint8_t>* candidate_mask = nullptr;     // per cell, 1: a candidate
+};
+
+struct MergePlan {
+  core::CellWindow dirty;           // bounding box of the changes; empty when there are none
+  std::vector<CellChange> changes;  // ascending cell index
+  int added = 0;
+  int removed = 0;
+  int candidates = 0;  // new candidates
+  int dropped = 0;     // candidates seen free
+};
+
+// `span`: when the temporary map whose evidence this is was built.
+MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span,
+                    const MergeInputs& inputs, const MergeOptions& options);
+
+}  // namespace fleetmap::aggregator

@@ -1,0 +1,80 @@
+#include "vehicle_agent/agent_pipeline.h"
+
+namespace fleetmap::vehicle_agent {
+
+core::Status AgentPipelineOptions::Validate() const {
+  if (vehicle_id.empty()) return core::InvalidArgument("agent: vehicle_id is empty");
+  if (!scanner_in_base.IsFinite())
+    return core::InvalidArgument("agent: scanner_in_base is not finite");
+  FLEETMAP_RETURN_IF_ERROR(localizer.Validate().WithContext("agent.localizer"));
+  FLEETMAP_RETURN_IF_ERROR(divergence.Validate().WithContext("agent.divergence"));
+  return builder.Validate().WithContext("agent.builder");
+}
+
+AgentPipeline::AgentPipeline(const AgentPipelineOptions& options)
+    : options_(options),
+      localizer_(options.localizer),
+      divergence_(options.divergence),
+      builder_(options.builder) {}
+
+core::Status AgentPipeline::SetMap(const core::OccupancyGrid& map, int32_t version) {
+  // Temporary maps are built at the current map's resolution, so that they merge cell for cell.
+  options_.builder.mapper.map.resolution_m = map.geometry().resolution_m();
+  return localizer_.SetMap(map, version);
+}
+
+core::Status AgentPipeline::InitializeAt(const core::Pose2& pose, const Eigen::Matrix3d& cov) {
+  return localizer_.InitializeAt(pose, cov);
+}
+
+core::Status AgentPipeline::AddExternalPose(const core::PoseEstimate& pose) {
+  return localizer_.AddExternalPose(pose);
+}
+
+void AgentPipeline::AddOdometry(const core::OdometrySample& odom) {
+  if (!odom.Validate().ok()) return;  // the localizer counts bad odometry when it sees it
+  odom_ = odom;
+  if (!have_odom_) odom_at_last_scan_ = odom.pose_in_odom;
+  have_odom_ = true;
+}
+
+void AgentPipeline::StartMap(double stamp_s, const core::Pose2& anchor) {
+  builder_ = TempMapBuilder(options_.builder);
+  builder_.Start(options_.vehicle_id, next_sequence_++, stamp_s, anchor);
+  ++counters_.temp_maps_started;
+}
+
+AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
+  ++counters_.scans;
+  AgentStep step;
+  const LocalizerResult located = localizer_.Update(odom_, scan, options_.scanner_in_base);
+  step.pose = located.estimate;
+  step.localization = located.stats;
+  step.divergence = divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps);
+  const core::Pose2 odometry_delta = core::Between(odom_at_last_scan_, odom_.pose_in_odom);
+  odom_at_last_scan_ = odom_.pose_in_odom;
+  if (step.divergence.started && !builder_.building())
+    StartMap(scan.stamp_s, step.pose.pose_in_map);
+  if (builder_.building() && step.divergence.accepted && scan.Validate().ok()) {
+    const BuilderStep built = builder_.AddScan(scan, odometry_delta, options_.scanner_in_base);
+    if (built.must_close && !step.divergence.stopped) {
+      // Out of area or time while the change goes on: close this map and go on in a new one.
+      step.closed_map = builder_.Close(scan.stamp_s);
+      ++counters_.temp_maps_split;
+      StartMap(scan.stamp_s, step.pose.pose_in_map);
+    }
+  }
+  if (step.divergence.stopped && builder_.building())
+    step.closed_map = builder_.Close(scan.stamp_s);
+  if (step.closed_map) ++counters_.temp_maps_closed;
+  step.building = builder_.building();
+  return step;
+}
+
+std::optional<core::TempMap> AgentPipeline::Flush(double stamp_s) {
+  auto closed = builder_.Close(stamp_s);
+  if (closed) ++counters_.temp_maps_closed;
+  return closed;
+}
+
+}  // namespace fleetmap::vehicle_agent

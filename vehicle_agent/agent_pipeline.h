@@ -1,0 +1,75 @@
+// The vehicle's per-scan pipeline, the paper's Fig. 2 on board: localize on the current map,
+// compute W_avg and the divergence d(t), and while d(t) says the map no longer explains the
+// laser, build a temporary map; hand each closed temporary map to the caller (the agent
+// process sends it to the aggregator). Free of LCM and I/O: time and data come in, results
+// go out, so a replay is repeatable.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "vehicle_agent/divergence.h"
+#include "vehicle_agent/localizer.h"
+#include "vehicle_agent/temp_map_builder.h"
+
+namespace fleetmap::vehicle_agent {
+
+struct AgentPipelineOptions {
+  std::string vehicle_id = "vehicle";
+  core::Pose2 scanner_in_base;  // mounting pose of the laser scanner
+  LocalizerOptions localizer;
+  DivergenceOptions divergence;
+  TempMapBuilderOptions builder;  // the map's resolution is the current map's
+  core::Status Validate() const;
+};
+
+struct AgentStep {
+  core::PoseEstimate pose;  // localized pose (never NaN)
+  LocalizerStats localization;
+  DivergenceSample divergence;              // the paper's Fig. 3 sample of this scan
+  std::optional<core::TempMap> closed_map;  // a temporary map this scan completed
+  bool building = false;                    // a temporary map is being built
+};
+
+struct AgentCounters {
+  int64_t scans = 0;
+  int64_t temp_maps_started = 0;
+  int64_t temp_maps_closed = 0;
+  int64_t temp_maps_split = 0;  // closed for size or time while the change went on
+};
+
+class AgentPipeline {
+ public:
+  explicit AgentPipeline(const AgentPipelineOptions& options);
+
+  // The current map (static map plus merged changes) and its version; swapped in without
+  // stopping: the particles, the divergence averages and a map being built all carry on.
+  core::Status SetMap(const core::OccupancyGrid& map, int32_t version);
+  core::Status InitializeAt(const core::Pose2& pose_in_map, const Eigen::Matrix3d& covariance);
+  core::Status AddExternalPose(const core::PoseEstimate& pose_in_map);
+
+  // The latest odometry; the next scan uses the most recent sample.
+  void AddOdometry(const core::OdometrySample& odom);
+  AgentStep AddScan(const core::LaserScan& scan);
+  // Closes a temporary map being built (at shutdown).
+  std::optional<core::TempMap> Flush(double stamp_s);
+
+  const AgentCounters& counters() const { return counters_; }
+  const Localizer& localizer() const { return localizer_; }
+  const AgentPipelineOptions& options() const { return options_; }
+
+ private:
+  void StartMap(double stamp_s, const core::Pose2& anchor);
+
+  AgentPipelineOptions options_;
+  Localizer localizer_;
+  DivergenceDetector divergence_;
+  TempMapBuilder builder_;
+  core::OdometrySample odom_;
+  core::Pose2 odom_at_last_scan_;
+  bool have_odom_ = false;
+  int32_t next_sequence_ = 1;
+  AgentCounters counters_;
+};
+
+}  // namespace fleetmap::vehicle_agent

@@ -1,0 +1,41 @@
+#include "vehicle_agent/input_guard.h"
+
+#include <cmath>
+
+namespace fleetmap::vehicle_agent {
+
+OdometryTracker::OdometryTracker(double max_step_m, double max_step_rad)
+    : max_step_m_(max_step_m), max_step_rad_(max_step_rad) {}
+
+OdometryTracker::Outcome OdometryTracker::Add(const core::OdometrySample& odom) {
+  if (!odom.Validate().ok()) return Outcome::kInvalid;
+  if (!has_sample_) {
+    has_sample_ = true;
+    last_ = odom;
+    return Outcome::kFirst;
+  }
+  if (odom.stamp_s < last_.stamp_s) return Outcome::kOutOfOrder;
+  const core::Pose2 step = core::Between(last_.pose_in_odom, odom.pose_in_odom);
+  last_ = odom;
+  if (!step.IsFinite() || std::hypot(step.x_m, step.y_m) > max_step_m_ ||
+      std::abs(step.theta_rad) > max_step_rad_) {
+    return Outcome::kJump;
+  }
+  clean_pose_ = clean_pose_ * step;
+  return Outcome::kApplied;
+}
+
+ScanGate::Outcome ScanGate::Check(const core::LaserScan& scan, const core::Pose2& scanner_in_base) {
+  if (!scan.Validate().ok() || !scanner_in_base.IsFinite()) return Outcome::kInvalid;
+  if (has_scan_ && !(scan.stamp_s > last_stamp_s_)) return Outcome::kOutOfOrder;
+  layout_changed_ = has_scan_ && (scan.size() != beams_ || scan.angle_min_rad != angle_min_rad_ ||
+                                  scan.angle_increment_rad != angle_increment_rad_);
+  has_scan_ = true;
+  last_stamp_s_ = scan.stamp_s;
+  beams_ = scan.size();
+  angle_min_rad_ = scan.angle_min_rad;
+  angle_increment_rad_ = scan.angle_increment_rad;
+  return Outcome::kAccepted;
+}
+
+}  // namespace fleetmap::vehicle_agent

@@ -1,0 +1,57 @@
+// What the localizer lets through from its inputs. Outside data is never trusted: odometry
+// with NaNs, going back in time or jumping (an odometry reset, a glitch) and scans that are
+// malformed or out of order are dropped and counted, never applied and never a crash.
+#pragma once
+
+#include <cstddef>
+
+#include "core/odometry.h"
+#include "core/scan.h"
+
+namespace fleetmap::vehicle_agent {
+
+// Composes the accepted odometry increments into a "clean" odometry pose: the odometry frame
+// with every dropped increment cut out. Poses derived from it never see a jump.
+class OdometryTracker {
+ public:
+  enum class Outcome { kFirst, kApplied, kInvalid, kOutOfOrder, kJump };
+
+  // max_step_m / max_step_rad: the largest believable increment between two samples.
+  OdometryTracker(double max_step_m, double max_step_rad);
+
+  // A jump is dropped but becomes the new reference, so the samples after it apply again.
+  Outcome Add(const core::OdometrySample& odom);
+
+  bool has_sample() const { return has_sample_; }
+  const core::OdometrySample& last() const { return last_; }
+  // Starts at the identity when the first sample arrives.
+  const core::Pose2& clean_pose() const { return clean_pose_; }
+
+ private:
+  double max_step_m_, max_step_rad_;
+  bool has_sample_ = false;
+  core::OdometrySample last_;
+  core::Pose2 clean_pose_;
+};
+
+// Accepts scans whose header validates (LaserScan::Validate), whose scanner mount is finite
+// and whose stamp is later than the last accepted one; notes when the beam layout changes.
+class ScanGate {
+ public:
+  enum class Outcome { kAccepted, kInvalid, kOutOfOrder };
+
+  Outcome Check(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
+  // The last accepted scan had a different beam count or angles than the one before.
+  bool layout_changed() const { return layout_changed_; }
+  bool has_scan() const { return has_scan_; }
+  double last_stamp_s() const { return last_stamp_s_; }  // 0 before the first scan
+
+ private:
+  bool has_scan_ = false;
+  bool layout_changed_ = false;
+  double last_stamp_s_ = 0.0;
+  size_t beams_ = 0;
+  double angle_min_rad_ = 0.0, angle_increment_rad_ = 0.0;
+};
+
+}  // namespace fleetmap::vehicle_agent

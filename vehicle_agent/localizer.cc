@@ -1,0 +1,296 @@
+#include "vehicle_agent/localizer.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "vehicle_agent/particle_init.h"
+#include "vehicle_agent/resampling.h"
+#include "vehicle_agent/scan_endpoints.h"
+
+namespace fleetmap::vehicle_agent {
+namespace {
+
+Eigen::Matrix3d DiagonalCovariance(double sigma_xy_m, double sigma_theta_rad) {
+  return Eigen::Vector3d(sigma_xy_m * sigma_xy_m, sigma_xy_m * sigma_xy_m,
+                         sigma_theta_rad * sigma_theta_rad)
+      .asDiagonal();
+}
+
+Eigen::Vector3d PoseDifference(const core::Pose2& a, const core::Pose2& b) {
+  return {a.x_m - b.x_m, a.y_m - b.y_m, core::NormalizeAngle(a.theta_rad - b.theta_rad)};
+}
+
+// cov^-1, with a tiny regularisation so that a singular covariance stays usable.
+Eigen::Matrix3d Information(const Eigen::Matrix3d& cov) {
+  return (cov + 1e-12 * Eigen::Matrix3d::Identity()).inverse();
+}
+
+double SquaredMahalanobis(const Eigen::Vector3d& d, const Eigen::Matrix3d& cov) {
+  return d.dot(Information(cov) * d);
+}
+
+}  // namespace
+
+Localizer::Localizer(const LocalizerOptions& options)
+    : options_(options),
+      field_(options.likelihood_field),
+      rng_(options.seed),
+      odometry_(options.max_odometry_step_m, options.max_odometry_step_rad) {
+  assert(options.Validate().ok());
+  if (options.w_avg_model == WAvgModel::kBeamModel) beam_model_ = MakeBeamModel(options.beam_model);
+  moments_.mean = options.initial_pose_in_map;
+  moments_.covariance =
+      DiagonalCovariance(options.initial_sigma_xy_m, options.initial_sigma_theta_rad);
+  last_estimate_.pose_in_map = moments_.mean;
+  last_estimate_.covariance = moments_.covariance;
+}
+
+core::Status Localizer::SetMap(const core::OccupancyGrid& map, int32_t version) {
+  if (map.geometry().num_cells() == 0 ||
+      static_cast<int64_t>(map.cells().size()) != map.geometry().num_cells()) {
+    return core::InvalidArgument("localizer: refusing an empty map as version " +
+                                 std::to_string(version));
+  }
+  field_.SetMap(map);
+  if (beam_model_) beam_model_->SetMap(map);
+  map_ = map;
+  map_version_ = version;
+  has_map_ = true;
+  if (initialized_) return core::OkStatus();
+  if (options_.initial_pose_mode == InitialPoseMode::kGlobal) return InitializeGlobal();
+  return InitializeAt(
+      options_.initial_pose_in_map,
+      DiagonalCovariance(options_.initial_sigma_xy_m, options_.initial_sigma_theta_rad));
+}
+
+core::Status Localizer::InitializeAt(const core::Pose2& pose_in_map,
+                                     const Eigen::Matrix3d& covariance) {
+  if (!pose_in_map.IsFinite()) return core::InvalidArgument("initial pose is not finite");
+  FLEETMAP_RETURN_IF_ERROR(ValidatePoseCovariance(covariance));
+  Restart(SampleAroundPose(pose_in_map, covariance, options_.kld.max_particles, rng_));
+  return core::OkStatus();
+}
+
+core::Status Localizer::InitializeGlobal() {
+  if (!has_map_) return core::FailedPrecondition("global initialisation needs a map");
+  ParticleSet particles = SampleFreeSpace(map_, options_.kld.max_particles, rng_);
+  if (particles.empty()) return core::FailedPrecondition("the map has no free cell");
+  Restart(std::move(particles));
+  return core::OkStatus();
+}
+
+void Localizer::Restart(ParticleSet particles) {
+  particles_ = std::move(particles);
+  initialized_ = true;
+  force_update_ = true;
+  moments_ = ComputeMoments(particles_);
+  clean_odom_at_update_ = OdomAtScan();
+}
+
+core::Status Localizer::AddExternalPose(const core::PoseEstimate& pose_in_map) {
+  core::Status status = pose_in_map.Validate();
+  if (status.ok() && has_external_ && pose_in_map.stamp_s < external_.pose.stamp_s)
+    status = core::InvalidArgument("external pose older than the previous one");
+  if (status.ok() && options_.external_pose_mode == ExternalPoseMode::kIgnore)
+    status = core::FailedPrecondition("external poses are ignored (external_pose_mode)");
+  if (!status.ok()) {
+    ++counters_.external_poses_dropped;
+    return status;
+  }
+  external_ = {pose_in_map, OdomAtScan()};
+  has_external_ = external_fresh_ = true;
+  external_lapsed_ = false;
+  return core::OkStatus();
+}
+
+LocalizerResult Localizer::Update(const core::OdometrySample& odom, const core::LaserScan& scan,
+                                  const core::Pose2& scanner_in_base) {
+  ++counters_.scans;
+  LocalizerStats stats;
+  TrackOdometry(odom);
+  const bool scan_ok = AcceptScan(scan, scanner_in_base);
+  ExtrapolateOdometry(scans_.last_stamp_s());
+  stats.external = PassingThrough(scans_.last_stamp_s());
+  if (!stats.external && scan_ok && has_map_ && initialized_ && FilterDue())
+    FilterUpdate(scan, scanner_in_base, stats);
+  LocalizerResult result{Estimate(stats.external), stats};
+  if (scan_ok) {
+    const ScanLikelihood& w_avg_model = beam_model_ ? *beam_model_ : field_;
+    result.stats.w_avg =
+        w_avg_model.MeanBeamLikelihood(scan, result.estimate.pose_in_map * scanner_in_base);
+  }
+  result.stats.particles = static_cast<int>(particles_.size());
+  if (!stats.filter_updated) result.stats.effective_sample_size = EffectiveSampleSize(particles_);
+  result.stats.counters = counters_;
+  return result;
+}
+
+core::PoseEstimate Localizer::Estimate(bool external) {
+  core::PoseEstimate e;
+  e.stamp_s = scans_.last_stamp_s();
+  e.pose_in_map = external ? ExternalNow() : CurrentPose();
+  e.covariance = external ? ExternalCovariance() : moments_.covariance;
+  e.map_version = map_version_;
+  // A last line of defence: whatever went wrong upstream, the pose handed on is finite.
+  if (!e.pose_in_map.IsFinite() || !e.covariance.allFinite()) return last_estimate_;
+  last_estimate_ = e;
+  return e;
+}
+
+void Localizer::TrackOdometry(const core::OdometrySample& odom) {
+  switch (odometry_.Add(odom)) {
+    case OdometryTracker::Outcome::kInvalid:
+      ++counters_.odometry_invalid;
+      break;
+    case OdometryTracker::Outcome::kOutOfOrder:
+      ++counters_.odometry_out_of_order;
+      break;
+    case OdometryTracker::Outcome::kJump:
+      ++counters_.odometry_jumps;
+      break;
+    default:
+      break;
+  }
+}
+
+void Localizer::ExtrapolateOdometry(double scan_stamp_s) {
+  odom_to_scan_ = core::Pose2();
+  if (!odometry_.has_sample() || !scans_.has_scan()) return;
+  const core::OdometrySample& o = odometry_.last();
+  const double limit = options_.max_odometry_extrapolation_s;
+  const double dt = std::clamp(scan_stamp_s - o.stamp_s, -limit, limit);
+  const double turn = o.omega_radps * dt, travel = o.v_mps * dt;
+  const core::Pose2 step(travel * std::cos(0.5 * turn), travel * std::sin(0.5 * turn), turn);
+  if (step.IsFinite() && std::hypot(step.x_m, step.y_m) <= options_.max_odometry_step_m)
+    odom_to_scan_ = step;
+}
+
+bool Localizer::AcceptScan(const core::LaserScan& scan, const core::Pose2& scanner_in_base) {
+  switch (scans_.Check(scan, scanner_in_base)) {
+    case ScanGate::Outcome::kInvalid:
+      ++counters_.scans_invalid;
+      return false;
+    case ScanGate::Outcome::kOutOfOrder:
+      ++counters_.scans_out_of_order;
+      return false;
+    case ScanGate::Outcome::kAccepted:
+      break;
+  }
+  if (scans_.layout_changed()) ++counters_.scan_layout_changes;
+  for (size_t i = 0; i < scan.size(); ++i)
+    counters_.beams_invalid += ClassifyBeam(scan, i, scan.range_max_m) == BeamReading::kInvalid;
+  return true;
+}
+
+bool Localizer::PassingThrough(double stamp_s) {
+  if (options_.external_pose_mode != ExternalPoseMode::kPassThrough || !has_external_) return false;
+  if (stamp_s - external_.pose.stamp_s <= options_.external_timeout_s) return true;
+  if (!external_lapsed_) {  // MCL takes over from where the external pose left off
+    external_lapsed_ = true;
+    ++counters_.external_reinits;
+    Restart(
+        SampleAroundPose(ExternalNow(), ExternalCovariance(), options_.kld.max_particles, rng_));
+  }
+  return false;
+}
+
+bool Localizer::FilterDue() const {
+  const core::Pose2 moved = core::Between(clean_odom_at_update_, OdomAtScan());
+  return force_update_ || std::hypot(moved.x_m, moved.y_m) >= options_.update_min_translation_m ||
+         std::abs(moved.theta_rad) >= options_.update_min_rotation_rad;
+}
+
+void Localizer::FilterUpdate(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                             LocalizerStats& stats) {
+  force_update_ = false;
+  Predict();
+  if (options_.external_pose_mode == ExternalPoseMode::kFuse && external_fresh_ &&
+      FuseOrReinitialize()) {
+    return;  // restarted around the external pose; the next scan weighs the new particles
+  }
+  ScanEndpoints(scan, scanner_in_base, options_.max_beams, options_.likelihood_field.max_range_m,
+                endpoints_);
+  if (endpoints_.empty()) {
+    ++counters_.scans_without_returns;
+  } else {
+    Weigh(stats);
+    if (stats.effective_sample_size <
+        options_.resample_min_neff_ratio * static_cast<double>(particles_.size())) {
+      Resample();
+      stats.resampled = true;
+    }
+  }
+  moments_ = ComputeMoments(particles_);
+  ++counters_.filter_updates;
+  stats.filter_updated = true;
+  stats.beams_scored = static_cast<int>(endpoints_.size());
+}
+
+void Localizer::Predict() {
+  const core::Pose2 delta = core::Between(clean_odom_at_update_, OdomAtScan());
+  for (Particle& p : particles_)
+    p.pose = SampleMotionModelOdometry(p.pose, delta, options_.motion, rng_);
+  clean_odom_at_update_ = OdomAtScan();
+}
+
+void Localizer::Weigh(LocalizerStats& stats) {
+  const bool fuse = options_.external_pose_mode == ExternalPoseMode::kFuse && external_fresh_;
+  external_fresh_ = false;
+  const core::Pose2 external = fuse ? ExternalNow() : core::Pose2();
+  const Eigen::Matrix3d information = Information(ExternalCovariance());
+  log_weights_.resize(particles_.size());
+  double max_log_weight = -std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    double lw = field_.LogLikelihood(endpoints_, particles_[i].pose);
+    if (fuse) {
+      const Eigen::Vector3d d = PoseDifference(particles_[i].pose, external);
+      lw -= 0.5 * d.dot(information * d);  // the external pose as one more measurement
+    }
+    log_weights_[i] = lw;
+    max_log_weight = std::max(max_log_weight, lw);
+  }
+  for (size_t i = 0; i < particles_.size(); ++i)
+    particles_[i].weight *= std::exp(log_weights_[i] - max_log_weight);
+  if (!NormalizeWeights(particles_)) ++counters_.weight_resets;
+  stats.effective_sample_size = EffectiveSampleSize(particles_);
+}
+
+void Localizer::Resample() {
+  ParticleSet resampled = LowVarianceResample(particles_, particles_.size(), rng_);
+  const size_t target = static_cast<size_t>(
+      KldParticleCount(CountOccupiedBins(resampled, options_.kld), options_.kld));
+  if (target != resampled.size()) resampled = LowVarianceResample(particles_, target, rng_);
+  particles_ = std::move(resampled);
+  ++counters_.resamplings;
+}
+
+bool Localizer::FuseOrReinitialize() {
+  const PoseMoments m = ComputeMoments(particles_);
+  const core::Pose2 external = ExternalNow();
+  const double gate = options_.external_reinit_mahalanobis;
+  if (SquaredMahalanobis(PoseDifference(m.mean, external), m.covariance + ExternalCovariance()) <=
+      gate * gate) {
+    return false;
+  }
+  external_fresh_ = false;
+  ++counters_.external_reinits;
+  Restart(SampleAroundPose(external, ExternalCovariance(), options_.kld.max_particles, rng_));
+  return true;
+}
+
+core::Pose2 Localizer::CurrentPose() const {
+  return moments_.mean * core::Between(clean_odom_at_update_, OdomAtScan());
+}
+
+core::Pose2 Localizer::ExternalNow() const {
+  return external_.pose.pose_in_map * core::Between(external_.clean_odom, OdomAtScan());
+}
+
+Eigen::Matrix3d Localizer::ExternalCovariance() const {
+  const Eigen::Matrix3d& c = external_.pose.covariance;
+  if (c(0, 0) > 0 && c(1, 1) > 0 && c(2, 2) > 0) return c;
+  return DiagonalCovariance(options_.external_sigma_xy_m, options_.external_sigma_theta_rad);
+}
+
+}  // namespace fleetmap::vehicle_agent

@@ -1,0 +1,141 @@
+// Monte Carlo localization (Probabilistic Robotics, ch. 8; as in AMCL): particles predicted
+// by the odometry motion model, weighted by the likelihood field, resampled with the
+// low-variance sampler when the effective sample size drops, their number adapted by KLD
+// sampling. The map can be swapped for a new version at any time without stopping or losing
+// the particles. Every scan also yields W_avg, the paper's eq. (1), at the estimated pose.
+//
+// Frames: `pose_in_map` is the vehicle base in the static map frame; odometry is the base in
+// the drifting odometry frame; `scanner_in_base` is the scanner mount.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "core/occupancy_grid.h"
+#include "core/odometry.h"
+#include "core/scan.h"
+#include "vehicle_agent/input_guard.h"
+#include "vehicle_agent/likelihood_field.h"
+#include "vehicle_agent/localizer_options.h"
+#include "vehicle_agent/particle_set.h"
+
+namespace fleetmap::vehicle_agent {
+
+// Running totals since construction: what was dropped or repaired, and how often.
+struct LocalizerCounters {
+  int64_t scans = 0;                  // Update() calls
+  int64_t scans_invalid = 0;          // header failed LaserScan::Validate or mount not finite
+  int64_t scans_out_of_order = 0;     // stamp not after the last accepted scan
+  int64_t scans_without_returns = 0;  // accepted, but no usable beam: prediction only
+  int64_t scan_layout_changes = 0;    // beam count or angles differ from the scan before
+  int64_t beams_invalid = 0;          // NaN, -inf, zero, negative, below range_min_m
+  int64_t odometry_invalid = 0;       // non-finite field
+  int64_t odometry_out_of_order = 0;  // stamp before the last sample
+  int64_t odometry_jumps = 0;         // increment above max_odometry_step_*: dropped
+  int64_t weight_resets = 0;          // every particle impossible: weights made uniform
+  int64_t filter_updates = 0;
+  int64_t resamplings = 0;
+  int64_t external_poses_dropped = 0;  // invalid, out of order or ignored by the mode
+  int64_t external_reinits = 0;        // particles re-initialised around an external pose
+};
+
+struct LocalizerStats {
+  int particles = 0;
+  double effective_sample_size = 0.0;  // 1 / sum(w^2) after this update's weighting
+  // W_avg (eq. 1) of this scan at the estimated pose: the per-beam geometric mean of
+  // options.w_avg_model. NaN when the scan was dropped or had no usable beam, or no map.
+  double w_avg = std::numeric_limits<double>::quiet_NaN();
+  int beams_scored = 0;         // end points per particle in this update
+  bool filter_updated = false;  // prediction and measurement ran for this scan
+  bool resampled = false;
+  bool external = false;  // the estimate is the external pose carried forward (kPassThrough)
+  LocalizerCounters counters;
+};
+
+struct LocalizerResult {
+  core::PoseEstimate estimate;  // never NaN
+  LocalizerStats stats;
+};
+
+class Localizer {
+ public:
+  // `options` must pass Validate() (an assert).
+  explicit Localizer(const LocalizerOptions& options);
+
+  // Uses `map` from now on; the particles stay where they are. The first map also initialises
+  // the filter (options.initial_pose_mode). An empty map is refused and the old one kept.
+  core::Status SetMap(const core::OccupancyGrid& map, int32_t version);
+  // Restarts the particles around a pose (an operator's or configured initial pose).
+  core::Status InitializeAt(const core::Pose2& pose_in_map, const Eigen::Matrix3d& covariance);
+  // Restarts the particles over the map's free cells (max_particles of them).
+  core::Status InitializeGlobal();
+  // A pose from the vehicle's own localization, taken to refer to the time of the last
+  // Update (at most one scan period off; it is carried forward by odometry from there).
+  // Used per options.external_pose_mode; refused when invalid or older than the last one.
+  core::Status AddExternalPose(const core::PoseEstimate& pose_in_map);
+
+  // One scan with the odometry sample closest to it. Bad input is dropped and counted (see
+  // LocalizerCounters); the returned pose is always finite.
+  LocalizerResult Update(const core::OdometrySample& odom, const core::LaserScan& scan,
+                         const core::Pose2& scanner_in_base);
+
+  bool initialized() const { return initialized_; }
+  int32_t map_version() const { return map_version_; }
+  const ParticleSet& particles() const { return particles_; }
+  const LocalizerCounters& counters() const { return counters_; }
+  const LocalizerOptions& options() const { return options_; }
+
+ private:
+  struct ExternalPose {
+    core::PoseEstimate pose;
+    core::Pose2 clean_odom;  // the tracker's clean odometry when it arrived
+  };
+
+  void TrackOdometry(const core::OdometrySample& odom);
+  bool AcceptScan(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
+  bool PassingThrough(double stamp_s);
+  bool FilterDue() const;
+  void FilterUpdate(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                    LocalizerStats& stats);
+  void Predict();
+  void Weigh(LocalizerStats& stats);
+  void Resample();
+  bool FuseOrReinitialize();
+  void Restart(ParticleSet particles);
+  void ExtrapolateOdometry(double scan_stamp_s);
+  core::Pose2 OdomAtScan() const { return odometry_.clean_pose() * odom_to_scan_; }
+  core::Pose2 CurrentPose() const;
+  core::PoseEstimate Estimate(bool external);
+  core::Pose2 ExternalNow() const;
+  Eigen::Matrix3d ExternalCovariance() const;
+
+  const LocalizerOptions options_;
+  LikelihoodField field_;
+  std::unique_ptr<ScanLikelihood> beam_model_;  // null unless w_avg_model is kBeamModel
+  core::OccupancyGrid map_;
+  int32_t map_version_ = -1;
+  bool has_map_ = false;
+  bool initialized_ = false;
+  bool force_update_ = false;
+  std::mt19937 rng_;
+  ParticleSet particles_;
+  PoseMoments moments_;               // of the particles at the last filter update
+  core::Pose2 clean_odom_at_update_;  // the tracker's clean odometry then
+  OdometryTracker odometry_;
+  core::Pose2 odom_to_scan_;  // the last odometry sample carried to the scan's stamp
+  ScanGate scans_;
+  bool has_external_ = false;
+  bool external_fresh_ = false;   // arrived since the last filter update (kFuse)
+  bool external_lapsed_ = false;  // kPassThrough timed out and MCL took over
+  ExternalPose external_;
+  core::PoseEstimate last_estimate_;        // the last finite one
+  std::vector<Eigen::Vector2f> endpoints_;  // scratch
+  std::vector<double> log_weights_;         // scratch
+  LocalizerCounters counters_;
+};
+
+}  // namespace fleetmap::vehicle_agent
