@@ -1,0 +1,82 @@
+#include "vehicle_agent/tempmap_outbox.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fleetmap::vehicle_agent {
+namespace {
+
+core::TempMap Map(int32_t sequence) {
+  core::TempMap m;
+  m.vehicle_id = "v1";
+  m.sequence = sequence;
+  m.grid = core::OccupancyGrid(core::GridGeometry(0.05, 130, 70));  // 3 x 2 tiles
+  m.grid.SetState({5, 5}, core::CellState::kOccupied);
+  m.start_s = 1, m.end_s = 2;
+  return m;
+}
+
+TEST(TempMapOutboxTest, SendsResendsWithBackoffAndStopsWhenMerged) {
+  OutboxOptions options;
+  options.first_resend_s = 1.0;
+  options.max_resend_s = 4.0;
+  TempMapOutbox outbox(options);
+  ASSERT_TRUE(outbox.Add(Map(1), 0.0).ok());
+  EXPECT_EQ(outbox.Due(0.0).size(), 6u);
+  EXPECT_TRUE(outbox.Due(0.5).empty());  // waiting for the acknowledgement
+  outbox.OnAck(1, {0, 1, 2, 3}, AckOutcome::kPending);
+  EXPECT_EQ(outbox.Due(1.0).size(), 2u);  // only what was not confirmed
+  EXPECT_TRUE(outbox.Due(2.5).empty());   // backoff doubled: next at 3.0
+  EXPECT_EQ(outbox.Due(3.0).size(), 2u);
+  EXPECT_TRUE(outbox.Due(6.9).empty());  // capped at 4 s: next at 7.0
+  EXPECT_EQ(outbox.Due(7.0).size(), 2u);
+  outbox.OnAck(1, {}, AckOutcome::kMerged);
+  EXPECT_EQ(outbox.pending(), 0u);
+  EXPECT_TRUE(outbox.Due(100.0).empty());
+  EXPECT_EQ(outbox.counters().tiles_sent, 6);
+  EXPECT_EQ(outbox.counters().tiles_resent, 6);
+}
+
+TEST(TempMapOutboxTest, SurvivesARestartThroughItsStateFolder) {
+  OutboxOptions options;
+  options.state_dir = ::testing::TempDir() + "/outbox_test";
+  std::filesystem::remove_all(options.state_dir);
+  {
+    TempMapOutbox outbox(options);
+    ASSERT_TRUE(outbox.Add(Map(1), 0.0).ok());
+    ASSERT_TRUE(outbox.Add(Map(2), 0.0).ok());
+    outbox.OnAck(1, {}, AckOutcome::kRejected);  // finished with: gone from disk too
+  }
+  std::ofstream(options.state_dir + "/tempmap_9.fmtm") << "garbage";
+  TempMapOutbox restarted(options);
+  EXPECT_EQ(restarted.LoadPersisted(10.0), 1);
+  EXPECT_EQ(restarted.counters().persist_errors, 1);
+  EXPECT_TRUE(std::filesystem::exists(options.state_dir + "/tempmap_9.fmtm.corrupt"));
+  const auto due = restarted.Due(10.0);
+  ASSERT_EQ(due.size(), 6u);
+  EXPECT_EQ(due[0].sequence, 2);
+  std::filesystem::remove_all(options.state_dir);
+}
+
+TEST(TempMapOutboxTest, BoundedByDroppingTheOldest) {
+  OutboxOptions options;
+  options.max_pending_maps = 2;
+  TempMapOutbox outbox(options);
+  for (int s = 1; s <= 3; ++s) ASSERT_TRUE(outbox.Add(Map(s), 0.0).ok());
+  EXPECT_EQ(outbox.pending(), 2u);
+  EXPECT_EQ(outbox.counters().maps_dropped, 1);
+  EXPECT_EQ(outbox.Due(0.0).front().sequence, 2);
+}
+
+TEST(TempMapOutboxTest, RefusesAnInvalidMap) {
+  TempMapOutbox outbox({});
+  core::TempMap bad = Map(1);
+  bad.vehicle_id.clear();
+  EXPECT_FALSE(outbox.Add(bad, 0.0).ok());
+  EXPECT_EQ(outbox.pending(), 0u);
+}
+
+}  // namespace
+}  // namespace fleetmap::vehicle_agent

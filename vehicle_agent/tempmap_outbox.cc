@@ -1,0 +1,104 @@
+#include "vehicle_agent/tempmap_outbox.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/temp_map_file.h"
+
+namespace fleetmap::vehicle_agent {
+
+namespace fs = std::filesystem;
+
+core::Status OutboxOptions::Validate() const {
+  if (!(first_resend_s > 0 && max_resend_s >= first_resend_s && max_pending_maps >= 1 &&
+        tile_size_cells >= 4)) {
+    return core::InvalidArgument(
+        "outbox: first_resend_s > 0, max_resend_s >= first_resend_s, "
+        "max_pending_maps >= 1, tile_size_cells >= 4");
+  }
+  return core::OkStatus();
+}
+
+TempMapOutbox::TempMapOutbox(const OutboxOptions& options) : options_(options) {}
+
+std::string TempMapOutbox::PathOf(int32_t sequence) const {
+  return options_.state_dir + "/tempmap_" + std::to_string(sequence) + ".fmtm";
+}
+
+void TempMapOutbox::Insert(const core::TempMap& map, double now_s) {
+  Entry e;
+  e.tiles = core::SplitTempMap(map, core::TempMapTileOptions(options_.tile_size_cells));
+  e.next_send_s = now_s;
+  e.backoff_s = options_.first_resend_s;
+  pending_[map.sequence] = std::move(e);
+  while (static_cast<int>(pending_.size()) > options_.max_pending_maps) {
+    const int32_t oldest = pending_.begin()->first;
+    if (!options_.state_dir.empty()) fs::remove(PathOf(oldest));
+    pending_.erase(pending_.begin());
+    ++counters_.maps_dropped;
+  }
+}
+
+int TempMapOutbox::LoadPersisted(double now_s) {
+  if (options_.state_dir.empty()) return 0;
+  std::error_code ec;
+  fs::create_directories(options_.state_dir, ec);
+  int loaded = 0;
+  for (const auto& entry : fs::directory_iterator(options_.state_dir, ec)) {
+    if (entry.path().extension() != ".fmtm") continue;
+    auto map = core::LoadTempMap(entry.path().string());
+    if (!map.ok()) {
+      ++counters_.persist_errors;
+      fs::rename(entry.path(), entry.path().string() + ".corrupt", ec);
+      continue;
+    }
+    Insert(*map, now_s);
+    ++loaded;
+  }
+  return loaded;
+}
+
+core::Status TempMapOutbox::Add(const core::TempMap& map, double now_s) {
+  FLEETMAP_RETURN_IF_ERROR(map.Validate());
+  ++counters_.maps_added;
+  if (!options_.state_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(options_.state_dir, ec);
+    const core::Status saved = core::SaveTempMap(map, PathOf(map.sequence));
+    // A full disk must not stop the map from being sent: it is only not kept across restarts.
+    if (!saved.ok()) ++counters_.persist_errors;
+  }
+  Insert(map, now_s);
+  return core::OkStatus();
+}
+
+std::vector<core::TempMapTile> TempMapOutbox::Due(double now_s) {
+  std::vector<core::TempMapTile> out;
+  for (auto& [sequence, e] : pending_) {
+    if (now_s < e.next_send_s) continue;
+    for (const core::TempMapTile& t : e.tiles) {
+      if (e.confirmed.count(t.index)) continue;
+      out.push_back(t);
+      (e.sent_once ? counters_.tiles_resent : counters_.tiles_sent)++;
+    }
+    e.sent_once = true;
+    e.next_send_s = now_s + e.backoff_s;
+    e.backoff_s = std::min(options_.max_resend_s, 2 * e.backoff_s);
+  }
+  return out;
+}
+
+void TempMapOutbox::OnAck(int32_t sequence, const std::vector<int32_t>& received,
+                          AckOutcome outcome) {
+  auto it = pending_.find(sequence);
+  if (it == pending_.end()) return;
+  if (outcome != AckOutcome::kPending) {
+    if (!options_.state_dir.empty()) fs::remove(PathOf(sequence));
+    pending_.erase(it);
+    ++counters_.maps_done;
+    return;
+  }
+  for (int32_t i : received) it->second.confirmed.insert(i);
+}
+
+}  // namespace fleetmap::vehicle_agent
