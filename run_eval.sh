@@ -1,46 +1,73 @@
 #!/usr/bin/env bash
 # Runs every shipped scenario end to end, in-process, scores each against the simulator's
-# ground truth, prints the figures as `name value unit` lines and writes out/eval.json.
-#   ./run_eval.sh                                        every shipped LivingLab scenario
+# ground truth, runs the scan matcher over the SLAM benchmark logs, prints every figure as a
+# `name value unit` line and writes out/eval.json.
+#   ./run_eval.sh                                            everything shipped
 #   ./run_eval.sh --scenario SCENARIO.yaml [--map MAP.yaml]   your own world
-# Pictures and report.json per scenario: out/eval/<scenario>/.
+#   ./run_eval.sh --carmen LOG --relations REL                your own CARMEN log
+# Per scenario: eval.S.* is the real system (vehicle pipelines + aggregator, pipeline
+# "agents"), eval.S.paper_mode.* the same with the paper's alignment, eval.S.truthmaps.* the
+# aggregator alone fed perfect temporary maps with anchor errors up to 0.3 m / 3 deg, and
+# eval.S.truthmaps.paper_mode.* the same with the paper's alignment (docs/aggregator.md).
+# FLEETMAP_EVAL_BUILD_DIR (default build-release) picks the Release build folder.
+# Pictures and report.json per scenario and pipeline: out/eval/.
 set -euo pipefail
 cd "$(dirname "$0")"
 
-scenario="" map=""
+scenario="" map="" carmen="" relations=""
 while (($#)); do
   case $1 in
     --scenario) scenario=${2:?--scenario needs a file}; shift 2 ;;
     --map) map=${2:?--map needs a file}; shift 2 ;;
-    -h | --help) sed -n '2,7p' "$0"; exit 0 ;;
+    --carmen) carmen=${2:?--carmen needs a log}; shift 2 ;;
+    --relations) relations=${2:?--relations needs a file}; shift 2 ;;
+    -h | --help) sed -n '2,12p' "$0"; exit 0 ;;
     *) echo "run_eval.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 [[ -n $map && -z $scenario ]] && { echo "run_eval.sh: --map goes with --scenario" >&2; exit 2; }
+[[ -n $carmen && -z $relations ]] && { echo "run_eval.sh: --carmen needs --relations" >&2; exit 2; }
 
 scripts/install_deps.sh
-cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
+build=${FLEETMAP_EVAL_BUILD_DIR:-build-release}
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
   -DFLEETMAP_BUILD_JAR=OFF >/dev/null
-cmake --build build-release -j "$(nproc)" --target fleetmap-eval >&2
-
-# The pipeline that exists today. The oracle merges exactly what the scanners saw; once the
-# vehicle agent and aggregator libraries land, they replace it here.
-pipeline=oracle
-echo "run_eval: pipeline '$pipeline' (merges the true observed change: a reference, not the system)" >&2
+cmake --build "$build" -j "$(nproc)" --target fleetmap-eval fleetmap-carmen-eval >&2
 
 worlds=tools/sim/worlds/livinglab
+data=../shared/data/real
+scenarios=() logs=()
 if [[ -n $scenario ]]; then
   scenarios=("$scenario")
-else
+elif [[ -z $carmen ]]; then
   scenarios=("$worlds/addition.yaml" "$worlds/removal.yaml" "$worlds/fleet.yaml")
+  for l in intel aces fr079; do
+    if [[ -f $data/$l/$l.rebuilt.clf ]]; then logs+=("$data/$l/$l.rebuilt.clf:$data/$l/$l.relations")
+    else echo "run_eval: $data/$l not found: skipping the real log $l" >&2; fi
+  done
 fi
+[[ -n $carmen ]] && logs=("$carmen:$relations")
 
 mkdir -p out
 figures=""
-for s in "${scenarios[@]}"; do
-  args=(--scenario "$s" --pipeline "$pipeline")
+evaluate() {  # scenario, figure-name suffix, fleetmap-eval arguments...
+  local s=$1 suffix=$2; shift 2
+  local name; name=$(sed -n 's/^name: *//p' "$s"); name=${name:-$(basename "$s" .yaml)}
+  local args=(--scenario "$s" --quiet --name "$name$suffix" --out "out/eval/$name$suffix" "$@")
   [[ -n $map ]] && args+=(--map "$map")
-  figures+=$(build-release/bin/fleetmap-eval "${args[@]}")$'\n'
+  echo "run_eval: $s ($*)" >&2
+  figures+=$("$build"/bin/fleetmap-eval "${args[@]}")$'\n'
+}
+for s in "${scenarios[@]}"; do
+  evaluate "$s" "" --pipeline agents
+  evaluate "$s" ".paper_mode" --pipeline agents --align-mode paper
+  evaluate "$s" ".truthmaps" --pipeline truthmaps
+  evaluate "$s" ".truthmaps.paper_mode" --pipeline truthmaps --align-mode paper
+done
+for pair in "${logs[@]}"; do
+  log=${pair%%:*} rel=${pair#*:}
+  echo "run_eval: $log" >&2
+  figures+=$("$build"/bin/fleetmap-carmen-eval --carmen "$log" --relations "$rel" --png "out/eval/$(basename "$log" .rebuilt.clf).png" 2>/dev/null)$'\n'
 done
 printf '%s' "$figures"
 {

@@ -76,8 +76,7 @@ Assessment Aggregator::Assess(const core::TempMap& map) const {
     a.reason_text = lines.status().ToString();
     return a;
   }
-  AlignmentInput in{lines->lines, EdgePoints(lines->edges, map.grid.geometry()),
-                    map.anchor_in_map};
+  AlignmentInput in{lines->lines, EdgePoints(lines->edges, map.grid.geometry()), map.anchor_in_map};
   a.temp_lines = static_cast<int>(in.temp_lines.size());
   a.alignment = Align(in, features_, options_.alignment);
   const auto points = Subsample(in.temp_points, options_.alignment.max_search_points);
@@ -105,15 +104,14 @@ MergeReport Aggregator::Rejected(const core::TempMap& map, const Assessment& ass
   return r;
 }
 
-core::Result<MergeReport> Aggregator::Commit(const core::TempMap& map,
-                                             const Assessment& assessment, double now_s) {
+core::Result<MergeReport> Aggregator::Commit(const core::TempMap& map, const Assessment& assessment,
+                                             double now_s) {
   if (!assessment.accepted()) return Rejected(map, assessment);
   const core::Pose2& correction = assessment.alignment.correction;
   const PlacedEvidence evidence = PlaceEvidence(map, correction, store_.static_map().geometry());
   const MergeInputs inputs{&addable_, &store_.semi_static(), &store_.candidates(),
                            &store_.candidate_mask()};
-  const MergePlan plan =
-      PlanMerge(evidence, {map.start_s, map.end_s}, inputs, options_.merge);
+  const MergePlan plan = PlanMerge(evidence, {map.start_s, map.end_s}, inputs, options_.merge);
   MergeCommit commit{store_.version() + 1,
                      {map.vehicle_id, map.sequence, map.start_s, map.end_s, now_s},
                      correction,

@@ -25,20 +25,20 @@ namespace fleetmap::aggregator {
 
 struct AggregatorOptions {
   PlacementOptions placement;
-  LineFeatureOptions temp_lines;          // line extraction of temporary maps
-  StaticFeatureOptions static_features;   // line extraction and overlap fields of the static map
+  LineFeatureOptions temp_lines;         // line extraction of temporary maps
+  StaticFeatureOptions static_features;  // line extraction and overlap fields of the static map
   AlignmentOptions alignment;
   ConfidenceOptions confidence;
   MergeOptions merge;
   StoreOptions store;
-  PersistenceOptions persistence;         // used by Open only
+  PersistenceOptions persistence;  // used by Open only
   core::Status Validate() const;
 };
 
 // One row of the paper's Tables 1 and 2.
 struct LineReportRow {
-  int temp_line_id = 0;    // index into the temporary map's segments
-  int static_line_id = 0;  // index into StaticMapFeatures::lines()
+  int temp_line_id = 0;           // index into the temporary map's segments
+  int static_line_id = 0;         // index into StaticMapFeatures::lines()
   double distance_diff_px = 0.0;  // |normal distance| after the correction, cells
   double angle_diff_deg = 0.0;    // static minus corrected temporary angle
 };
@@ -67,9 +67,9 @@ struct MergeReport {
   int cells_removed = 0;
   int candidates_new = 0;      // cells seen occupied for the first time (merge.h)
   int candidates_dropped = 0;  // candidates seen free
-  uint64_t version = 0;  // the current map's version after this report
-  MapDelta delta;        // version - 1 -> version; empty when rejected
-  std::string warning;   // e.g. a snapshot that failed after the merge was journaled
+  uint64_t version = 0;        // the current map's version after this report
+  MapDelta delta;              // version - 1 -> version; empty when rejected
+  std::string warning;         // e.g. a snapshot that failed after the merge was journaled
 };
 
 struct AggregatorStats {

@@ -15,7 +15,8 @@ void Finish(const AlignmentInput& in, const StaticMapFeatures& f, const LineMatc
   const core::Pose2 placed = r.correction * in.anchor;
   r.temp_lines_in_map = PlaceSegments(in.temp_lines, placed);
   r.matches = MatchLines(r.temp_lines_in_map, f.lines(), matching);
-  const Eigen::Vector2d moved = r.correction.Apply(in.anchor.translation()) - in.anchor.translation();
+  const Eigen::Vector2d moved =
+      r.correction.Apply(in.anchor.translation()) - in.anchor.translation();
   r.dtheta_rad = r.correction.theta_rad;
   r.dx_m = moved.dot(r.axis_x);
   r.dy_m = moved.dot(r.axis_y);
@@ -184,7 +185,8 @@ core::Status AlignmentOptions::Validate() const {
     return core::InvalidArgument("alignment.min_family_length_m must be >= 0");
   if (!(refined_search_range_m > 0))
     return core::InvalidArgument("alignment.refined_search_range_m must be > 0");
-  if (max_search_points < 10) return core::InvalidArgument("alignment.max_search_points must be >= 10");
+  if (max_search_points < 10)
+    return core::InvalidArgument("alignment.max_search_points must be >= 10");
   return core::OkStatus();
 }
 

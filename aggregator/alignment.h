@@ -63,16 +63,15 @@ struct AlignmentResult {
   Eigen::Vector2d axis_x = Eigen::Vector2d::UnitX(), axis_y = Eigen::Vector2d::UnitY();
   std::vector<LineSegment> temp_lines_in_map;  // the temporary segments, corrected
   std::vector<LineMatch> matches;              // measured after the correction
-  bool shift_by_overlap = false;  // a displacement came from the overlap search
-  OverlapPeak overlap;            // that search's first peak, over the whole search range
-  int rounds = 0;                 // match-rotate-translate rounds run
+  bool shift_by_overlap = false;               // a displacement came from the overlap search
+  OverlapPeak overlap;  // that search's first peak, over the whole search range
+  int rounds = 0;       // match-rotate-translate rounds run
 };
 
 AlignmentResult Align(const AlignmentInput& input, const StaticMapFeatures& features,
                       const AlignmentOptions& options);
 
 // Every `stride`-th point such that at most `max_points` remain (deterministic).
-std::vector<Eigen::Vector2d> Subsample(const std::vector<Eigen::Vector2d>& points,
-                                       int max_points);
+std::vector<Eigen::Vector2d> Subsample(const std::vector<Eigen::Vector2d>& points, int max_points);
 
 }  // namespace fleetmap::aggregator

@@ -35,15 +35,15 @@ void Judge(const AlignmentResult& a, const ConfidenceOptions& o, AlignmentConfid
     c.explanation = std::move(why);
   };
   if (c.matched_lines < o.min_matched_lines || c.matched_length_m < o.min_matched_length_m) {
-    reject(RejectReason::kTooFewStaticLines,
-           Format("%.0f static lines matched, %.2f m long", double(c.matched_lines),
-                  c.matched_length_m));
+    reject(RejectReason::kTooFewStaticLines, Format("%.0f static lines matched, %.2f m long",
+                                                    double(c.matched_lines), c.matched_length_m));
   } else if (c.residual_cells > o.max_residual_cells) {
     reject(RejectReason::kLinesDisagree, Format("median line residual %.2f cells > %.2f",
                                                 c.residual_cells, o.max_residual_cells));
   } else if (c.angle_residual_deg > o.max_angle_residual_rad * 180 / M_PI) {
-    reject(RejectReason::kLinesDisagree, Format("median angle residual %.2f deg > %.2f",
-                                                c.angle_residual_deg, o.max_angle_residual_rad * 180 / M_PI));
+    reject(RejectReason::kLinesDisagree,
+           Format("median angle residual %.2f deg > %.2f", c.angle_residual_deg,
+                  o.max_angle_residual_rad * 180 / M_PI));
   } else if (moved > o.max_correction_m || std::abs(a.dtheta_rad) > o.max_correction_rad) {
     reject(RejectReason::kCorrectionTooLarge,
            Format("correction %.3f m, %.2f deg", moved, a.dtheta_rad * 180 / M_PI));
@@ -58,8 +58,8 @@ void Judge(const AlignmentResult& a, const ConfidenceOptions& o, AlignmentConfid
     reject(RejectReason::kOverlapWorse, Format("explained fraction fell from %.3f to %.3f",
                                                c.explained_before, c.explained_after));
   } else if (c.explained_after < o.min_explained_fraction) {
-    reject(RejectReason::kLowOverlap, Format("explained fraction %.3f < %.3f", c.explained_after,
-                                             o.min_explained_fraction));
+    reject(RejectReason::kLowOverlap,
+           Format("explained fraction %.3f < %.3f", c.explained_after, o.min_explained_fraction));
   }
 }
 
@@ -67,32 +67,43 @@ void Judge(const AlignmentResult& a, const ConfidenceOptions& o, AlignmentConfid
 
 const char* RejectReasonName(RejectReason reason) {
   switch (reason) {
-    case RejectReason::kNone: return "none";
-    case RejectReason::kInvalidTempMap: return "invalid_temp_map";
-    case RejectReason::kTooFewStaticLines: return "too_few_static_lines";
-    case RejectReason::kLinesDisagree: return "lines_disagree";
-    case RejectReason::kAmbiguousShift: return "ambiguous_shift";
-    case RejectReason::kCorrectionTooLarge: return "correction_too_large";
-    case RejectReason::kOverlapWorse: return "overlap_worse";
-    case RejectReason::kLowOverlap: return "low_overlap";
+    case RejectReason::kNone:
+      return "none";
+    case RejectReason::kInvalidTempMap:
+      return "invalid_temp_map";
+    case RejectReason::kTooFewStaticLines:
+      return "too_few_static_lines";
+    case RejectReason::kLinesDisagree:
+      return "lines_disagree";
+    case RejectReason::kAmbiguousShift:
+      return "ambiguous_shift";
+    case RejectReason::kCorrectionTooLarge:
+      return "correction_too_large";
+    case RejectReason::kOverlapWorse:
+      return "overlap_worse";
+    case RejectReason::kLowOverlap:
+      return "low_overlap";
   }
   return "unknown";
 }
 
 core::Status ConfidenceOptions::Validate() const {
-  if (min_matched_lines < 1) return core::InvalidArgument("confidence.min_matched_lines must be >= 1");
+  if (min_matched_lines < 1)
+    return core::InvalidArgument("confidence.min_matched_lines must be >= 1");
   if (!(min_matched_length_m >= 0))
     return core::InvalidArgument("confidence.min_matched_length_m must be >= 0");
   if (!(max_residual_cells > 0))
     return core::InvalidArgument("confidence.max_residual_cells must be > 0");
   if (!(max_angle_residual_rad > 0))
     return core::InvalidArgument("confidence.max_angle_residual_rad must be > 0");
-  if (!(max_correction_m > 0)) return core::InvalidArgument("confidence.max_correction_m must be > 0");
+  if (!(max_correction_m > 0))
+    return core::InvalidArgument("confidence.max_correction_m must be > 0");
   if (!(max_correction_rad > 0))
     return core::InvalidArgument("confidence.max_correction_rad must be > 0");
   if (!(min_prominence >= 0 && min_prominence < 1))
     return core::InvalidArgument("confidence.min_prominence must be in [0, 1)");
-  if (!(max_overlap_loss >= 0)) return core::InvalidArgument("confidence.max_overlap_loss must be >= 0");
+  if (!(max_overlap_loss >= 0))
+    return core::InvalidArgument("confidence.max_overlap_loss must be >= 0");
   if (!(min_explained_fraction >= 0 && min_explained_fraction <= 1))
     return core::InvalidArgument("confidence.min_explained_fraction must be in [0, 1]");
   return core::OkStatus();
@@ -107,7 +118,8 @@ AlignmentConfidence AssessAlignment(const AlignmentResult& alignment, double res
   c.overlap_gain = explained_after - explained_before;
   Measure(alignment, resolution_m, c);
   Judge(alignment, options, c);
-  const double length_term = std::min(1.0, c.matched_length_m / (4.0 * options.min_matched_length_m));
+  const double length_term =
+      std::min(1.0, c.matched_length_m / (4.0 * options.min_matched_length_m));
   c.score = length_term * explained_after / (1.0 + c.residual_cells);
   if (!c.accepted()) c.score = 0.0;
   return c;

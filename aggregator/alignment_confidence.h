@@ -26,16 +26,19 @@ enum class RejectReason {
 const char* RejectReasonName(RejectReason reason);
 
 struct ConfidenceOptions {
-  int min_matched_lines = 2;           // matched temporary segments, >= 1
-  double min_matched_length_m = 2.0;   // their total length, >= 0
-  double max_residual_cells = 1.5;     // weighted median |normal distance| after correction
+  // Matched temporary segments, >= 1, and their total length, >= 0. One long wall is enough:
+  // it fixes the rotation and the shift across it, and the overlap search (with its own
+  // checks below) the shift along it. (2 lines rejected maps the evaluation aligned well.)
+  int min_matched_lines = 1;
+  double min_matched_length_m = 2.0;
+  double max_residual_cells = 1.5;  // weighted median |normal distance| after correction
   double max_angle_residual_rad = 2.0 * M_PI / 180;  // weighted median |angle difference|
-  double max_correction_m = 0.75;      // the anchor's displacement
+  double max_correction_m = 0.75;                    // the anchor's displacement
   double max_correction_rad = 6.0 * M_PI / 180;
   // Of the overlap search, when one was used: the peak must rise this much (relative) above
   // the lowest score of the range, and not lie at its end.
   double min_prominence = 0.02;
-  double max_overlap_loss = 0.02;      // explained fraction may drop at most this much
+  double max_overlap_loss = 0.02;        // explained fraction may drop at most this much
   double min_explained_fraction = 0.25;  // of the temporary surface cells, after correction
   core::Status Validate() const;
 };
@@ -43,15 +46,15 @@ struct ConfidenceOptions {
 struct AlignmentConfidence {
   int matched_lines = 0;
   double matched_length_m = 0.0;
-  double residual_cells = 0.0;     // weighted median |normal distance|, cells
+  double residual_cells = 0.0;      // weighted median |normal distance|, cells
   double angle_residual_deg = 0.0;  // weighted median |angle difference|
-  double explained_before = 0.0;   // fraction of temporary surface cells near static ones
+  double explained_before = 0.0;    // fraction of temporary surface cells near static ones
   double explained_after = 0.0;
-  double overlap_gain = 0.0;       // after - before
-  double prominence = 1.0;         // of the overlap peak (1 when no search was used)
-  double score = 0.0;              // 0..1, higher is better; for reports and ordering
+  double overlap_gain = 0.0;  // after - before
+  double prominence = 1.0;    // of the overlap peak (1 when no search was used)
+  double score = 0.0;         // 0..1, higher is better; for reports and ordering
   RejectReason reason = RejectReason::kNone;
-  std::string explanation;         // for a rejection: what was measured against what limit
+  std::string explanation;  // for a rejection: what was measured against what limit
   bool accepted() const { return reason == RejectReason::kNone; }
 };
 

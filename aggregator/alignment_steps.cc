@@ -60,15 +60,4 @@ double RobustWeightedMean(const std::vector<Weighted>& samples, double inlier) {
   return inliers.empty() ? median : WeightedMean(inliers);
 }
 
-Eigen::Vector2d MatchedCentroid(const std::vector<LineMatch>& matches,
-                                const std::vector<LineSegment>& temp_in_map) {
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  double weight = 0.0;
-  for (const LineMatch& m : matches) {
-    sum += m.weight_m * temp_in_map[m.temp_index].midpoint();
-    weight += m.weight_m;
-  }
-  return weight > 0 ? Eigen::Vector2d(sum / weight) : Eigen::Vector2d::Zero();
-}
-
 }  // namespace fleetmap::aggregator

@@ -1,10 +1,9 @@
 // Small pieces both alignment modes are built from: moving segments and points by a pose,
-// a rotation about a point, and the robust weighted estimates ours uses.
+// a rotation about a point, and the weighted estimates (the paper's mean, our robust one).
 #pragma once
 
 #include <vector>
 
-#include "aggregator/line_matcher.h"
 #include "aggregator/line_segment.h"
 #include "core/pose2.h"
 
@@ -30,9 +29,5 @@ double WeightedMedian(std::vector<Weighted> samples);
 double RobustWeightedMean(const std::vector<Weighted>& samples, double inlier);
 // The length-weighted mean, without outlier rejection (the paper's estimate).
 double WeightedMean(const std::vector<Weighted>& samples);
-
-// The length-weighted centroid of the matched temporary segments' mid points.
-Eigen::Vector2d MatchedCentroid(const std::vector<LineMatch>& matches,
-                                const std::vector<LineSegment>& temp_in_map);
 
 }  // namespace fleetmap::aggregator

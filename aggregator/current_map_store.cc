@@ -52,10 +52,14 @@ bool CurrentMapStore::Fits(const CellChange& c) const {
   const bool semi = semi_static_[static_cast<size_t>(c.cell)] != 0;
   const bool candidate = candidate_mask_[static_cast<size_t>(c.cell)] != 0;
   switch (c.kind) {
-    case CellChangeKind::kAdded: return !semi;
-    case CellChangeKind::kRemoved: return semi;
-    case CellChangeKind::kCandidate: return !semi && !candidate;
-    case CellChangeKind::kCandidateDropped: return candidate;
+    case CellChangeKind::kAdded:
+      return !semi;
+    case CellChangeKind::kRemoved:
+      return semi;
+    case CellChangeKind::kCandidate:
+      return !semi && !candidate;
+    case CellChangeKind::kCandidateDropped:
+      return candidate;
   }
   return false;
 }
@@ -106,8 +110,8 @@ core::Result<MapDelta> CurrentMapStore::Apply(MergeCommit commit) {
   for (int t : TouchedTiles(commit.changes)) {
     tile_versions_[static_cast<size_t>(t)] = version_;
     const core::TileIndex index = layout_.FromLinear(t);
-    delta.tiles.push_back({index, core::EncodeWindow(current_, layout_.Window(index),
-                                                     options_.tiles.codec)});
+    delta.tiles.push_back(
+        {index, core::EncodeWindow(current_, layout_.Window(index), options_.tiles.codec)});
   }
   deltas_.push_back(delta);
   while (deltas_.size() > static_cast<size_t>(options_.retained_deltas)) deltas_.pop_front();

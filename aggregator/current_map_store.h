@@ -17,8 +17,8 @@
 namespace fleetmap::aggregator {
 
 struct StoreOptions {
-  core::TileOptions tiles;    // tile size and codec of deltas and keyframes
-  int retained_deltas = 64;   // deltas v -> v+1 kept for resending, >= 0
+  core::TileOptions tiles;               // tile size and codec of deltas and keyframes
+  int retained_deltas = 64;              // deltas v -> v+1 kept for resending, >= 0
   core::OccupancyThresholds thresholds;  // classify the static map's cells
   core::Status Validate() const;
 };

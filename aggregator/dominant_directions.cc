@@ -46,8 +46,7 @@ DominantDirections FindDominantDirections(const std::vector<LineSegment>& lines,
   for (int pass = 0; pass < 2; ++pass) {
     for (int i = 0; i < bins; ++i) {
       const double angle = (i + 0.5) * M_PI / bins;
-      if (pass == 1 &&
-          std::abs(LineAngleDiff(result.primary_rad, angle)) < o.min_separation_rad) {
+      if (pass == 1 && std::abs(LineAngleDiff(result.primary_rad, angle)) < o.min_separation_rad) {
         continue;
       }
       const auto [length, mean] = PeakAround(lines, angle, o.smoothing_rad + o.bin_rad / 2);

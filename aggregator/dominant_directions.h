@@ -12,16 +12,16 @@
 namespace fleetmap::aggregator {
 
 struct DominantDirectionOptions {
-  double bin_rad = M_PI / 180;                 // histogram bin width, (0, pi/36]
-  double smoothing_rad = 2.0 * M_PI / 180;     // peaks are summed over +- this, >= 0
+  double bin_rad = M_PI / 180;                    // histogram bin width, (0, pi/36]
+  double smoothing_rad = 2.0 * M_PI / 180;        // peaks are summed over +- this, >= 0
   double min_separation_rad = 30.0 * M_PI / 180;  // the second peak lies this far from the first
   core::Status Validate() const;
 };
 
 struct DominantDirections {
-  double primary_rad = 0.0;           // direction angle of the most line length, [0, pi)
-  double secondary_rad = M_PI / 2;    // the strongest direction at least min_separation away
-  double primary_length = 0.0;        // line length within the smoothing window of each peak
+  double primary_rad = 0.0;         // direction angle of the most line length, [0, pi)
+  double secondary_rad = M_PI / 2;  // the strongest direction at least min_separation away
+  double primary_length = 0.0;      // line length within the smoothing window of each peak
   double secondary_length = 0.0;
   // Unit vectors along each direction, and the normal of the primary one.
   Eigen::Vector2d primary() const;

@@ -47,7 +47,8 @@ core::Status ReadRecords(const uint8_t* data, size_t size, JournalContents& c) {
     }
     if (std::memcmp(p, kRecordMagic, 4) != 0) {
       if (!AllZero(p, left))
-        return core::DataLoss("journal corrupt: bad record magic at byte " + std::to_string(offset));
+        return core::DataLoss("journal corrupt: bad record magic at byte " +
+                              std::to_string(offset));
       Torn(c, offset, "zero-filled tail");
       break;
     }
@@ -138,8 +139,8 @@ JournalWriter::~JournalWriter() {
 core::Status JournalWriter::WriteAt(uint64_t offset, const std::vector<uint8_t>& bytes) {
   size_t done = 0;
   while (done < bytes.size()) {
-    const ssize_t n = ::pwrite(fd_, bytes.data() + done, bytes.size() - done,
-                               static_cast<off_t>(offset + done));
+    const ssize_t n =
+        ::pwrite(fd_, bytes.data() + done, bytes.size() - done, static_cast<off_t>(offset + done));
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return core::IoError(path_ + ": journal write failed: " + ErrnoText());
     done += static_cast<size_t>(n);

@@ -56,7 +56,8 @@ class JournalWriter {
   const std::string& path() const { return path_; }
 
  private:
-  JournalWriter(std::string path, int fd, uint64_t size) : path_(std::move(path)), fd_(fd), size_(size) {}
+  JournalWriter(std::string path, int fd, uint64_t size)
+      : path_(std::move(path)), fd_(fd), size_(size) {}
   core::Status WriteAt(uint64_t offset, const std::vector<uint8_t>& bytes);
   core::Status CutTo(uint64_t size);
 

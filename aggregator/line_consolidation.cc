@@ -15,8 +15,8 @@ struct Group {
 
 // Whether `s` belongs to the edge of group `g`.
 bool Joins(const Group& g, const LineSegment& s, const ConsolidationOptions& o) {
-  const double angle = LineAngleDiff(LineDirectionAngle(g.line.direction()),
-                                     LineDirectionAngle(s.direction()));
+  const double angle =
+      LineAngleDiff(LineDirectionAngle(g.line.direction()), LineDirectionAngle(s.direction()));
   if (std::abs(angle) > o.max_angle_diff_rad) return false;
   if (std::abs(g.line.SignedDistance(s.a)) > o.max_normal_distance_cells ||
       std::abs(g.line.SignedDistance(s.b)) > o.max_normal_distance_cells) {
@@ -89,8 +89,10 @@ core::Status ConsolidationOptions::Validate() const {
     return core::InvalidArgument("consolidation.max_angle_diff_rad must be in (0, pi/4)");
   if (!(max_normal_distance_cells >= 0))
     return core::InvalidArgument("consolidation.max_normal_distance_cells must be >= 0");
-  if (!(max_gap_cells >= 0)) return core::InvalidArgument("consolidation.max_gap_cells must be >= 0");
-  if (!(fit_band_cells > 0)) return core::InvalidArgument("consolidation.fit_band_cells must be > 0");
+  if (!(max_gap_cells >= 0))
+    return core::InvalidArgument("consolidation.max_gap_cells must be >= 0");
+  if (!(fit_band_cells > 0))
+    return core::InvalidArgument("consolidation.fit_band_cells must be > 0");
   if (!(min_length_cells >= 0))
     return core::InvalidArgument("consolidation.min_length_cells must be >= 0");
   if (min_fit_pixels < 2) return core::InvalidArgument("consolidation.min_fit_pixels must be >= 2");
@@ -116,10 +118,19 @@ std::vector<LineSegment> ConsolidateSegments(const std::vector<LineSegment>& raw
   }
   std::vector<LineSegment> result;
   for (const Group& g : groups) {
-    const auto pixels = BandPoints(g, image, options.fit_band_cells);
     const Eigen::Vector2d d = g.line.direction();
     LineSegment fitted = {g.line.a + g.t_min * d, g.line.a + g.t_max * d};
-    if (int(pixels.size()) >= options.min_fit_pixels) fitted = Refit(g, pixels);
+    // Repeated: the first band follows the Hough line, which may cross a thick edge slantwise
+    // and so see more of it at one end; each refit centres the band better.
+    Group current = g;
+    for (int pass = 0; pass < 6; ++pass) {
+      const auto pixels = BandPoints(current, image, options.fit_band_cells);
+      if (int(pixels.size()) < options.min_fit_pixels) break;
+      const LineSegment previous = fitted;
+      fitted = Refit(current, pixels);
+      current = {fitted, 0.0, fitted.length()};
+      if (pass > 0 && (fitted.a - previous.a).norm() + (fitted.b - previous.b).norm() < 0.01) break;
+    }
     if (fitted.length() >= options.min_length_cells) result.push_back(fitted);
   }
   std::stable_sort(result.begin(), result.end(), [](const LineSegment& x, const LineSegment& y) {

@@ -17,7 +17,7 @@ struct ConsolidationOptions {
   double max_angle_diff_rad = 4.0 * M_PI / 180;  // segments of one edge differ by at most this
   double max_normal_distance_cells = 2.0;  // end points this close to the group's line join it
   double max_gap_cells = 6.0;              // along the line; a door's width keeps walls apart
-  double fit_band_cells = 1.5;  // pixels this close to a group's line take part in its refit
+  double fit_band_cells = 1.5;     // pixels this close to a group's line take part in its refit
   double min_length_cells = 10.0;  // shorter consolidated segments are dropped
   int min_fit_pixels = 6;          // fewer pixels: the group keeps its Hough geometry
   core::Status Validate() const;

@@ -30,10 +30,14 @@ struct LineFeatureOptions {
   core::Status Validate() const;
 };
 
-// The options for a static map: edges on its surface cells.
+// The options for a static map: edges on its surface cells, which form rows one cell thick,
+// so a group and its refit stay within a cell of its line and the two faces of a thin wall
+// (two cells apart) stay two lines.
 inline LineFeatureOptions StaticLineOptions() {
   LineFeatureOptions options;
   options.source = EdgeSource::kSurfaceCells;
+  options.consolidation.max_normal_distance_cells = 1.0;
+  options.consolidation.fit_band_cells = 0.8;
   return options;
 }
 

@@ -8,8 +8,8 @@ namespace {
 
 double DirectionAngle(const LineSegment& s) { return LineDirectionAngle(s.direction()); }
 
-LineMatch Measure(const std::vector<LineSegment>& temp, const std::vector<LineSegment>& stat,
-                  int t, int s) {
+LineMatch Measure(const std::vector<LineSegment>& temp, const std::vector<LineSegment>& stat, int t,
+                  int s) {
   LineMatch m;
   m.temp_index = t;
   m.static_index = s;
@@ -30,7 +30,10 @@ std::vector<LineMatch> Candidates(const std::vector<LineSegment>& temp,
   const Eigen::Vector2d mid = temp[t].midpoint();
   const double temp_angle = DirectionAngle(temp[t]);
   for (int s = 0; s < static_cast<int>(stat.size()); ++s) {
-    if (std::abs(LineAngleDiff(temp_angle, static_angles[s])) > o.max_angle_diff_rad) continue;
+    if (std::abs(LineAngleDiff(temp_angle, static_angles[s])) > o.max_angle_diff_rad ||
+        temp[t].FacesAwayFrom(stat[s])) {
+      continue;
+    }
     const double along = stat[s].Along(mid);
     if (along < -o.extent_margin_m || along > stat[s].length() + o.extent_margin_m) continue;
     const LineMatch m = Measure(temp, stat, t, s);
@@ -77,12 +80,14 @@ core::Status LineMatchOptions::Validate() const {
     return core::InvalidArgument("matching.max_angle_diff_rad must be in (0, pi/4)");
   if (!(max_normal_offset_m > 0))
     return core::InvalidArgument("matching.max_normal_offset_m must be > 0");
-  if (!(extent_margin_m >= 0)) return core::InvalidArgument("matching.extent_margin_m must be >= 0");
+  if (!(extent_margin_m >= 0))
+    return core::InvalidArgument("matching.extent_margin_m must be >= 0");
   if (!(min_temp_length_m >= 0))
     return core::InvalidArgument("matching.min_temp_length_m must be >= 0");
   if (!(parallel_tolerance_rad > 0))
     return core::InvalidArgument("matching.parallel_tolerance_rad must be > 0");
-  if (!(pair_tolerance_m > 0)) return core::InvalidArgument("matching.pair_tolerance_m must be > 0");
+  if (!(pair_tolerance_m > 0))
+    return core::InvalidArgument("matching.pair_tolerance_m must be > 0");
   return core::OkStatus();
 }
 

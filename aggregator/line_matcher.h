@@ -1,5 +1,6 @@
 // Matches the temporary map's segments (placed in the static frame) to the static map's, as
-// the paper does (Sec. 3.4): candidates are static segments of a similar angle that the
+// the paper does (Sec. 3.4): candidates are static segments of a similar angle (and the same
+// facing, when both know theirs: line_segment.h) that the
 // normal drawn from the temporary segment's mid point meets within a distance; pairs of
 // temporary segments must match pairs of static segments with the same normal distance
 // between them (for parallel pairs, whose separation a rigid motion keeps), and among the
@@ -16,7 +17,7 @@ namespace fleetmap::aggregator {
 struct LineMatchOptions {
   double max_angle_diff_rad = 6.0 * M_PI / 180;  // candidate angle window, (0, pi/4)
   double max_normal_offset_m = 1.0;  // candidate window along the normal from the mid point
-  double extent_margin_m = 0.3;  // the normal may meet the static segment this far beyond an end
+  double extent_margin_m = 0.3;    // the normal may meet the static segment this far beyond an end
   double min_temp_length_m = 0.4;  // shorter temporary segments are not matched
   // Pairs: parallel within this angle, and their separations agree within this distance.
   double parallel_tolerance_rad = 3.0 * M_PI / 180;
@@ -33,7 +34,7 @@ struct LineMatch {
   // Shift along `normal` that puts the temporary mid point on the static line.
   double offset_m = 0.0;
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();  // the static line's unit normal
-  double weight_m = 0.0;   // the temporary segment's length
+  double weight_m = 0.0;                              // the temporary segment's length
   double support_m = 0.0;  // length of other parallel temporary segments whose pairs agree
 };
 

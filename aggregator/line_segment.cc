@@ -26,7 +26,7 @@ HesseLine LineSegment::hesse() const {
 }
 
 LineSegment LineSegment::Transformed(const core::Pose2& pose) const {
-  return {pose.Apply(a), pose.Apply(b)};
+  return {pose.Apply(a), pose.Apply(b), oriented};
 }
 
 double LineDirectionAngle(const Eigen::Vector2d& direction) {

@@ -17,6 +17,9 @@ struct HesseLine {
 struct LineSegment {
   Eigen::Vector2d a = Eigen::Vector2d::Zero();  // end points, in the units of the frame
   Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  // The edge's facing is known: a -> b runs with the free side on its left. The two faces of
+  // a thin wall, or a wall and the pallet in front of it, then never match each other.
+  bool oriented = false;
 
   double length() const { return (b - a).norm(); }
   Eigen::Vector2d midpoint() const { return 0.5 * (a + b); }
@@ -31,7 +34,11 @@ struct LineSegment {
   double Along(const Eigen::Vector2d& p) const { return direction().dot(p - a); }
   // The segment with both end points mapped by `pose` (pose * point).
   LineSegment Transformed(const core::Pose2& pose) const;
-  LineSegment Scaled(double factor) const { return {a * factor, b * factor}; }
+  LineSegment Scaled(double factor) const { return {a * factor, b * factor, oriented}; }
+  // Both oriented and facing opposite ways (their directions more than 90 degrees apart).
+  bool FacesAwayFrom(const LineSegment& o) const {
+    return oriented && o.oriented && (b - a).dot(o.b - o.a) < 0;
+  }
 };
 
 // Angle of an undirected line's direction, [0, pi).

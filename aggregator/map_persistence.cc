@@ -54,12 +54,12 @@ core::Result<uint64_t> ReplayJournal(const std::string& path, CurrentMapStore& s
 core::Status PersistenceOptions::Validate() const {
   if (snapshot_every_merges < 1)
     return core::InvalidArgument("persistence.snapshot_every_merges must be >= 1");
-  if (max_file_bytes < 1024) return core::InvalidArgument("persistence.max_file_bytes must be >= 1024");
+  if (max_file_bytes < 1024)
+    return core::InvalidArgument("persistence.max_file_bytes must be >= 1024");
   return core::OkStatus();
 }
 
-core::Result<MapPersistence> MapPersistence::Open(const std::string& folder,
-                                                  CurrentMapStore& store,
+core::Result<MapPersistence> MapPersistence::Open(const std::string& folder, CurrentMapStore& store,
                                                   const PersistenceOptions& options,
                                                   RestoreReport* report) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());

@@ -13,7 +13,7 @@
 namespace fleetmap::aggregator {
 
 struct PersistenceOptions {
-  int snapshot_every_merges = 100;  // journal records before the next snapshot, >= 1
+  int snapshot_every_merges = 100;            // journal records before the next snapshot, >= 1
   int64_t max_file_bytes = int64_t{1} << 30;  // snapshot or journal larger than this is refused
   core::Status Validate() const;
 };

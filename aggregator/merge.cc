@@ -69,8 +69,8 @@ class Planner {
   // A candidate near (x, y) seen by a map at least confirm_min_gap_s away in time.
   bool EarlierSightingNear(int x, int y) const {
     auto confirms = [&](int nx, int ny) {
-      return Candidate(nx, ny) &&
-             !in_.candidates->at(static_cast<int64_t>(Global(nx, ny))).Near(span_, o_.confirm_min_gap_s);
+      return Candidate(nx, ny) && !in_.candidates->at(static_cast<int64_t>(Global(nx, ny)))
+                                       .Near(span_, o_.confirm_min_gap_s);
     };
     return confirms(x, y) || AnyNear(x, y, o_.confirm_radius_cells, confirms);
   }
@@ -90,7 +90,8 @@ class Planner {
   std::optional<CellChangeKind> Decide(int x, int y) const {
     if (Semi(x, y)) return DecideSemiStatic(x, y);
     const bool candidate = Candidate(x, y);
-    if (candidate && e_.at({x, y}) <= o_.remove_max_log_odds) return CellChangeKind::kCandidateDropped;
+    if (candidate && e_.at({x, y}) <= o_.remove_max_log_odds)
+      return CellChangeKind::kCandidateDropped;
     const bool seen = Seen(x, y);
     if (o_.confirmations <= 1) return seen ? std::optional(CellChangeKind::kAdded) : std::nullopt;
     if (seen && EarlierSightingNear(x, y)) return CellChangeKind::kAdded;
@@ -103,13 +104,15 @@ class Planner {
     return std::nullopt;
   }
 
-  // Cells this map sees occupied that connect (through other such cells) to a confirmed
-  // obstacle belong to it: another face of the same pallet, seen once. They are added too.
+  // Cells this map sees occupied that connect (through other such cells) to an obstacle
+  // of the current map belong to it: another face of the same pallet, seen once. They are
+  // added too. (Only obstacles confirmed before: a person who happened to stand at the same
+  // place at both sightings does not drag the rest of what this map saw of him in.)
   void GrowConfirmed(std::vector<std::optional<CellChangeKind>>& decided) const {
     std::vector<std::pair<int, int>> stack;
     for (int y = w_.y0; y < w_.y0 + w_.height; ++y)
       for (int x = w_.x0; x < w_.x0 + w_.width; ++x)
-        if (Semi(x, y) || decided[Local(x, y)] == CellChangeKind::kAdded) stack.emplace_back(x, y);
+        if (Semi(x, y)) stack.emplace_back(x, y);
     while (!stack.empty()) {
       const auto [x, y] = stack.back();
       stack.pop_back();
@@ -131,10 +134,18 @@ class Planner {
         if (!kind) continue;
         plan.changes.push_back({static_cast<int64_t>(Global(x, y)), *kind});
         switch (*kind) {
-          case CellChangeKind::kAdded: ++plan.added, Grow(plan.dirty, x, y); break;
-          case CellChangeKind::kRemoved: ++plan.removed, Grow(plan.dirty, x, y); break;
-          case CellChangeKind::kCandidate: ++plan.candidates; break;
-          case CellChangeKind::kCandidateDropped: ++plan.dropped; break;
+          case CellChangeKind::kAdded:
+            ++plan.added, Grow(plan.dirty, x, y);
+            break;
+          case CellChangeKind::kRemoved:
+            ++plan.removed, Grow(plan.dirty, x, y);
+            break;
+          case CellChangeKind::kCandidate:
+            ++plan.candidates;
+            break;
+          case CellChangeKind::kCandidateDropped:
+            ++plan.dropped;
+            break;
         }
       }
     }
@@ -190,8 +201,8 @@ std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
   return addable;
 }
 
-MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span,
-                    const MergeInputs& inputs, const MergeOptions& options) {
+MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span, const MergeInputs& inputs,
+                    const MergeOptions& options) {
   assert(inputs.addable && inputs.semi_static && inputs.candidates && inputs.candidate_mask);
   return Planner(evidence, span, inputs, options).Run();
 }

@@ -6,10 +6,10 @@
 //
 // Semi-static means still there later. With confirmations = 2 (the default) a cell first
 // seen occupied becomes a candidate, and only a temporary map of another time (their time
-// spans lie confirm_min_gap_s apart) that sees it, or a cell next to it, occupied again adds it; so does
-// a confirmed obstacle next to it (another face of the same pallet). A candidate seen free
-// is dropped. A person or a forklift is never at the same place in two such maps, a pallet
-// is. confirmations = 1 adds at first sight, as the paper does.
+// spans lie confirm_min_gap_s apart) that sees it, or a cell next to it, occupied again adds it; so
+// does a confirmed obstacle next to it (another face of the same pallet). A candidate seen free is
+// dropped. A person or a forklift is never at the same place in two such maps, a pallet is.
+// confirmations = 1 adds at first sight, as the paper does.
 #pragma once
 
 #include <map>
@@ -22,9 +22,10 @@
 namespace fleetmap::aggregator {
 
 struct MergeOptions {
-  // Temporary log-odds at or above this add an obstacle (> 0). 1.5 needs one clean hit
-  // (2.2) or a majority of hits; a single hit crossed by two later beams stays out.
-  float add_min_log_odds = 1.5f;
+  // Temporary log-odds at or above this add an obstacle (> 0). 3.0 needs two clean hits
+  // (2.2 each) more than misses: a stray return one cell deep inside a pallet stays out.
+  // (1.5, one hit, added such cells and cost 4% precision on the LivingLab runs.)
+  float add_min_log_odds = 3.0f;
   // At or below this a semi-static obstacle is removed (< 0): about five free observations
   // (0.4 each) more than hits.
   float remove_max_log_odds = -2.0f;
@@ -70,8 +71,8 @@ struct TimeSpan {
 
 // What the merge reads of the current map.
 struct MergeInputs {
-  const std::vector<uint8_t>* addable = nullptr;      // AddableCells of the static map
-  const std::vector<uint8_t>* semi_static = nullptr;  // per cell, 1: a semi-static obstacle
+  const std::vector<uint8_t>* addable = nullptr;            // AddableCells of the static map
+  const std::vector<uint8_t>* semi_static = nullptr;        // per cell, 1: a semi-static obstacle
   const std::map<int64_t, TimeSpan>* candidates = nullptr;  // cell -> the map that saw it
   const std::vector<uint8_t>* candidate_mask = nullptr;     // per cell, 1: a candidate
 };
@@ -86,7 +87,7 @@ struct MergePlan {
 };
 
 // `span`: when the temporary map whose evidence this is was built.
-MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span,
-                    const MergeInputs& inputs, const MergeOptions& options);
+MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span, const MergeInputs& inputs,
+                    const MergeOptions& options);
 
 }  // namespace fleetmap::aggregator

@@ -32,10 +32,14 @@ bool IsValidCellChangeKind(uint8_t code) { return code >= 1 && code <= 4; }
 
 const char* CellChangeKindName(CellChangeKind kind) {
   switch (kind) {
-    case CellChangeKind::kAdded: return "added";
-    case CellChangeKind::kRemoved: return "removed";
-    case CellChangeKind::kCandidate: return "candidate";
-    case CellChangeKind::kCandidateDropped: return "candidate_dropped";
+    case CellChangeKind::kAdded:
+      return "added";
+    case CellChangeKind::kRemoved:
+      return "removed";
+    case CellChangeKind::kCandidate:
+      return "candidate";
+    case CellChangeKind::kCandidateDropped:
+      return "candidate_dropped";
   }
   return "unknown";
 }

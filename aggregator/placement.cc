@@ -18,7 +18,8 @@ std::string Num(double v) {
 core::Status CheckSize(const GridGeometry& g, const GridGeometry& s, const PlacementOptions& o) {
   if (std::abs(g.resolution_m() - s.resolution_m()) > o.resolution_tolerance * s.resolution_m()) {
     return core::InvalidArgument("temporary map resolution " + Num(g.resolution_m()) +
-                                 " m differs from the static map's " + Num(s.resolution_m()) + " m");
+                                 " m differs from the static map's " + Num(s.resolution_m()) +
+                                 " m");
   }
   if (g.num_cells() > o.max_cells || g.width() * g.resolution_m() > o.max_extent_m ||
       g.height() * g.resolution_m() > o.max_extent_m) {
@@ -58,8 +59,8 @@ core::Status CheckInside(const core::TempMap& map, const GridGeometry& s,
   const double fraction = double(inside) / double(observed);
   if (fraction < o.min_inside_fraction) {
     return core::OutOfRange("temporary map lies outside the static map: " + Num(100 * fraction) +
-                            "% of its observed cells inside, " +
-                            Num(100 * o.min_inside_fraction) + "% needed");
+                            "% of its observed cells inside, " + Num(100 * o.min_inside_fraction) +
+                            "% needed");
   }
   return core::OkStatus();
 }
@@ -93,9 +94,11 @@ PlacedEvidence PlaceEvidence(const core::TempMap& map, const core::Pose2& correc
   int x0 = s.width(), y0 = s.height(), x1 = -1, y1 = -1;
   for (double cx : {0.0, double(placed.width())}) {
     for (double cy : {0.0, double(placed.height())}) {
-      const Eigen::Vector2d corner = placed.origin().Apply(Eigen::Vector2d(cx, cy) * placed.resolution_m());
+      const Eigen::Vector2d corner =
+          placed.origin().Apply(Eigen::Vector2d(cx, cy) * placed.resolution_m());
       const core::CellIndex c = s.WorldToCell(corner);
-      x0 = std::min(x0, c.x), y0 = std::min(y0, c.y), x1 = std::max(x1, c.x), y1 = std::max(y1, c.y);
+      x0 = std::min(x0, c.x), y0 = std::min(y0, c.y), x1 = std::max(x1, c.x),
+      y1 = std::max(y1, c.y);
     }
   }
   x0 = std::max(x0, 0), y0 = std::max(y0, 0);

@@ -41,7 +41,8 @@ uint32_t MapFingerprint(const core::OccupancyGrid& grid) {
   w.F64(g.origin().x_m);
   w.F64(g.origin().y_m);
   w.F64(g.origin().theta_rad);
-  w.Bytes(reinterpret_cast<const uint8_t*>(grid.cells().data()), grid.cells().size() * sizeof(float));
+  w.Bytes(reinterpret_cast<const uint8_t*>(grid.cells().data()),
+          grid.cells().size() * sizeof(float));
   return core::Crc32(bytes.data(), bytes.size());
 }
 

@@ -11,9 +11,10 @@ namespace fleetmap::aggregator {
 namespace {
 
 // The field on nodes every half cell: node (u, v) lies at cell coordinates (u / 2, v / 2),
-// so cell centres and cell faces are both nodes. Each surface cell marks its centre and the
-// faces it shares with free cells, so the field is flat between them and its ridge lies a
-// quarter cell in front of the centre (StaticFeatureOptions::surface_shift_cells).
+// so cell centres and cell faces are both nodes. Each surface cell marks its centre, the
+// nodes towards its surface neighbours and the faces it shares with free cells, so along a
+// wall the field is flat from the surface row's centre line to its face, and its ridge lies
+// a quarter cell in front of the centre (StaticFeatureOptions::surface_shift_cells).
 core::Result<std::vector<float>> SurfaceDistanceField(const core::OccupancyGrid& map,
                                                       const BinaryImage& surface,
                                                       const core::OccupancyThresholds& t,
@@ -28,13 +29,24 @@ core::Result<std::vector<float>> SurfaceDistanceField(const core::OccupancyGrid&
   std::vector<float> field(static_cast<size_t>(nw) * nh, 0.0f);
   try {
     cv::Mat not_surface(nh, nw, CV_8UC1, cv::Scalar(255));
+    auto mark = [&](int u, int v) {
+      if (u >= 0 && v >= 0 && u < nw && v < nh) not_surface.at<uint8_t>(v, u) = 0;
+    };
     static const int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     for (int y = 0; y < surface.height; ++y) {  // the centre of cell (x, y) is node (2x+1, 2y+1)
       for (int x = 0; x < surface.width; ++x) {
         if (!surface.at(x, y)) continue;
-        not_surface.at<uint8_t>(2 * y + 1, 2 * x + 1) = 0;
-        for (const auto& s : kSteps)
-          if (is_free(x + s[0], y + s[1])) not_surface.at<uint8_t>(2 * y + 1 + s[1], 2 * x + 1 + s[0]) = 0;
+        const int u = 2 * x + 1, v = 2 * y + 1;
+        mark(u, v);
+        for (const auto& s : kSteps) {
+          const int nx = x + s[0], ny = y + s[1];
+          if (surface.Contains(nx, ny) && surface.at(nx, ny)) mark(u + s[0], v + s[1]);
+          if (!is_free(nx, ny)) continue;
+          // The whole face towards free space: its middle and both corners.
+          mark(u + s[0], v + s[1]);
+          mark(u + s[0] + s[1], v + s[1] + s[0]);
+          mark(u + s[0] - s[1], v + s[1] - s[0]);
+        }
       }
     }
     cv::Mat distance(nh, nw, CV_32FC1, field.data());
@@ -59,23 +71,17 @@ std::vector<uint8_t> OccupiedMask(const core::OccupancyGrid& grid,
   return mask;
 }
 
-// Moves each line by surface_shift_cells towards its free side (the side where the map is
-// free one cell from the mid point; lines free on both or neither side stay).
+// Moves each oriented line by surface_shift_cells towards its free side (its left).
 std::vector<LineSegment> ShiftTowardsFree(std::vector<LineSegment> lines,
-                                          const core::OccupancyGrid& map,
+                                          const core::GridGeometry& g,
                                           const StaticFeatureOptions& o) {
-  const core::GridGeometry& g = map.geometry();
-  const core::TriStateClassifier classify(o.lines.thresholds);
-  auto free_at = [&](const Eigen::Vector2d& p) {
-    const core::CellIndex c = g.WorldToCell(p);
-    return g.Contains(c) && classify(map.log_odds(c)) == core::CellState::kFree;
-  };
   for (LineSegment& l : lines) {
-    const Eigen::Vector2d n = l.normal() * g.resolution_m();
-    const bool plus = free_at(l.midpoint() + n), minus = free_at(l.midpoint() - n);
-    if (plus == minus) continue;
-    const Eigen::Vector2d shift = (plus ? 1.0 : -1.0) * o.surface_shift_cells * n;
-    l = {l.a + shift, l.b + shift};
+    if (!l.oriented) continue;
+    const Eigen::Vector2d d = l.direction();
+    const Eigen::Vector2d shift =
+        o.surface_shift_cells * g.resolution_m() * Eigen::Vector2d(-d.y(), d.x());
+    l.a += shift;
+    l.b += shift;
   }
   return lines;
 }
@@ -102,10 +108,10 @@ core::Result<StaticMapFeatures> StaticMapFeatures::Compute(const core::Occupancy
   f.lines_ = std::move(features.lines);
   f.raw_segments_ = features.raw_segments;
   f.directions_ = FindDominantDirections(f.lines_, options.directions);
-  f.lines_ = ShiftTowardsFree(f.lines_, static_map, options);
-  FLEETMAP_ASSIGN_OR_RETURN(f.field_, SurfaceDistanceField(static_map, features.edges,
-                                                           options.lines.thresholds,
-                                                           options.field_sigma_cells));
+  f.lines_ = ShiftTowardsFree(f.lines_, f.geometry_, options);
+  FLEETMAP_ASSIGN_OR_RETURN(
+      f.field_, SurfaceDistanceField(static_map, features.edges, options.lines.thresholds,
+                                     options.field_sigma_cells));
   f.occupied_ = OccupiedMask(static_map, options.lines.thresholds);
   const core::Pose2 to_grid = f.geometry_.origin().Inverse();
   const double scale = 1.0 / f.geometry_.resolution_m();

@@ -21,7 +21,8 @@ std::vector<TempMapTile> SplitTempMap(const TempMap& map, const TileOptions& opt
     t.sequence = map.sequence;
     t.index = static_cast<int32_t>(i);
     t.count = static_cast<int32_t>(encoded.size());
-    t.corner_in_map = map.PlacedGeometry().origin();
+    t.anchor_in_map = map.anchor_in_map;
+    t.grid_origin = map.grid.geometry().origin();
     t.resolution_m = g.resolution_m();
     t.width_cells = g.width();
     t.height_cells = g.height();
@@ -49,7 +50,7 @@ Status TempMapAssembler::CheckAlone(const TempMapTile& t) const {
     return OutOfRange("tile " + std::to_string(t.index) + " of " + std::to_string(t.count) +
                       " is out of range");
   }
-  const GridGeometry g(t.resolution_m, t.width_cells, t.height_cells, t.corner_in_map);
+  const GridGeometry g(t.resolution_m, t.width_cells, t.height_cells, t.corner_in_map());
   FLEETMAP_RETURN_IF_ERROR(g.Validate().WithContext("temporary map header"));
   if (g.num_cells() > options_.max_map_cells) {
     return OutOfRange("temporary map of " + std::to_string(g.num_cells()) + " cells exceeds " +
@@ -67,13 +68,17 @@ Status TempMapAssembler::CheckAlone(const TempMapTile& t) const {
   return OkStatus();
 }
 
+namespace {
+bool SamePose(const Pose2& a, const Pose2& b) {
+  return a.x_m == b.x_m && a.y_m == b.y_m && a.theta_rad == b.theta_rad;
+}
+}  // namespace
+
 Status TempMapAssembler::CheckSameMap(const TempMapTile& a, const TempMapTile& b) {
-  const bool same = a.count == b.count && a.resolution_m == b.resolution_m &&
-                    a.width_cells == b.width_cells && a.height_cells == b.height_cells &&
-                    a.corner_in_map.x_m == b.corner_in_map.x_m &&
-                    a.corner_in_map.y_m == b.corner_in_map.y_m &&
-                    a.corner_in_map.theta_rad == b.corner_in_map.theta_rad &&
-                    a.start_s == b.start_s && a.end_s == b.end_s;
+  const bool same =
+      a.count == b.count && a.resolution_m == b.resolution_m && a.width_cells == b.width_cells &&
+      a.height_cells == b.height_cells && SamePose(a.anchor_in_map, b.anchor_in_map) &&
+      SamePose(a.grid_origin, b.grid_origin) && a.start_s == b.start_s && a.end_s == b.end_s;
   return same ? OkStatus() : InvalidArgument("tile disagrees with the other tiles of its map");
 }
 
@@ -109,8 +114,9 @@ TempMap TempMapAssembler::Assemble(const Pending& p) const {
   TempMap map;
   map.vehicle_id = h.vehicle_id;
   map.sequence = h.sequence;
-  map.anchor_in_map = h.corner_in_map;  // the grid's own origin is the identity
-  map.grid = OccupancyGrid(GridGeometry(h.resolution_m, h.width_cells, h.height_cells));
+  map.anchor_in_map = h.anchor_in_map;
+  map.grid =
+      OccupancyGrid(GridGeometry(h.resolution_m, h.width_cells, h.height_cells, h.grid_origin));
   for (const auto& [index, frame] : p.frames) (void)ApplyFrame(frame, map.grid);  // checked
   map.start_s = h.start_s;
   map.end_s = h.end_s;

@@ -19,7 +19,10 @@ struct TempMapTile {
   int32_t sequence = 0;
   int32_t index = 0;  // 0 .. count - 1
   int32_t count = 0;
-  Pose2 corner_in_map;  // the grid's cell (0, 0) corner placed by the anchor
+  // The aggregator turns a map about its anchor: both travel, not only the placed corner.
+  Pose2 anchor_in_map;  // localized vehicle pose where the map was started
+  Pose2 grid_origin;    // the grid's cell (0, 0) corner in the map's frame T
+  Pose2 corner_in_map() const { return anchor_in_map * grid_origin; }
   double resolution_m = 0.0;
   int32_t width_cells = 0, height_cells = 0;  // the whole temporary map
   double start_s = 0.0, end_s = 0.0;

@@ -3,7 +3,6 @@
 #include <cmath>
 
 namespace fleetmap::lcmtypes {
-namespace {
 
 fleetmap::pose2d_t ToMessage(const core::Pose2& p) {
   fleetmap::pose2d_t m;
@@ -14,6 +13,8 @@ fleetmap::pose2d_t ToMessage(const core::Pose2& p) {
 }
 
 core::Pose2 FromMessage(const fleetmap::pose2d_t& m) { return {m.x_m, m.y_m, m.theta_rad}; }
+
+namespace {
 
 core::Status CheckVehicle(const std::string& id) {
   if (id.empty() || id.size() > 64)

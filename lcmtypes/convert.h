@@ -32,9 +32,25 @@ inline std::string PoseChannel(const std::string& vehicle) { return "POSE_" + ve
 inline std::string TruthChannel(const std::string& vehicle) { return "TRUTH_" + vehicle; }
 // A pose from a vehicle's own (external) localization system.
 inline std::string ExternalPoseChannel(const std::string& vehicle) { return "EXTPOSE_" + vehicle; }
+// Uplink: what a vehicle's agent publishes.
+inline std::string TempMapChannel(const std::string& vehicle) { return "TEMPMAP_" + vehicle; }
+inline std::string DivergenceChannel(const std::string& vehicle) { return "DIVERGENCE_" + vehicle; }
+constexpr const char* kTempMapChannelRegex = "TEMPMAP_.*";
+constexpr const char* kMapRequestChannel = "MAP_REQUEST";
+// Downlink: what the aggregator publishes.
+constexpr const char* kTempMapAckChannel = "TEMPMAP_ACK";
+constexpr const char* kMapDeltaChannel = "MAP_DELTA";
+constexpr const char* kMapKeyframeChannel = "MAP_KEYFRAME";
+constexpr const char* kMergeReportChannel = "MERGE_REPORT";
+// Both: every process's heartbeat, e.g. STATUS_agent_v1, STATUS_aggregator.
+inline std::string StatusChannel(const std::string& process) { return "STATUS_" + process; }
 
 int64_t ToUtime(double stamp_s);
 double FromUtime(int64_t utime);
+
+// Poses unchecked: callers check IsFinite() where a pose comes from outside.
+fleetmap::pose2d_t ToMessage(const core::Pose2& pose);
+core::Pose2 FromMessage(const fleetmap::pose2d_t& msg);
 
 fleetmap::laser_scan_t ToMessage(const core::LaserScan& scan, const std::string& vehicle_id,
                                  int32_t seq);

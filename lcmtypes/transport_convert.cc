@@ -57,9 +57,8 @@ fleetmap::tempmap_tile_t ToMessage(const core::TempMapTile& t, int64_t utime) {
   m.tempmap_seq = t.sequence;
   m.tile_index = t.index;
   m.tile_count = t.count;
-  m.anchor_pose.x_m = t.corner_in_map.x_m;
-  m.anchor_pose.y_m = t.corner_in_map.y_m;
-  m.anchor_pose.theta_rad = t.corner_in_map.theta_rad;
+  m.anchor_pose = ToMessage(t.anchor_in_map);
+  m.grid_origin = ToMessage(t.grid_origin);
   m.resolution_m = static_cast<float>(t.resolution_m);
   m.width_cells = t.width_cells;
   m.height_cells = t.height_cells;
@@ -77,9 +76,10 @@ core::Result<core::TempMapTile> FromMessage(const fleetmap::tempmap_tile_t& m) {
   t.sequence = m.tempmap_seq;
   t.index = m.tile_index;
   t.count = m.tile_count;
-  t.corner_in_map = core::Pose2(m.anchor_pose.x_m, m.anchor_pose.y_m, m.anchor_pose.theta_rad);
-  if (!t.corner_in_map.IsFinite())
-    return core::InvalidArgument("temporary map anchor is not finite");
+  t.anchor_in_map = FromMessage(m.anchor_pose);
+  t.grid_origin = FromMessage(m.grid_origin);
+  if (!t.anchor_in_map.IsFinite() || !t.grid_origin.IsFinite())
+    return core::InvalidArgument("temporary map anchor or grid origin is not finite");
   t.resolution_m = SnapResolution(m.resolution_m);
   t.width_cells = m.width_cells;
   t.height_cells = m.height_cells;

@@ -10,6 +10,7 @@
 #include "core/file_io.h"
 #include "core/map_io.h"
 #include "core/map_render.h"
+#include "tools/eval/agents_pipeline.h"
 #include "tools/eval/eval_figures.h"
 #include "tools/eval/pipeline.h"
 #include "tools/eval/truth_tempmap_pipeline.h"
@@ -31,6 +32,8 @@ options:
   --scenario FILE   scenario YAML (required)
   --map FILE        static map (map_server YAML) instead of the one the scenario names
   --pipeline NAME   oracle: merges exactly what the scanners saw (the reference)   [oracle]
+                    agents: the real system in-process: each vehicle's on-board pipeline
+                    (localization, divergence, temporary maps) and the aggregator
                     truthmaps: temporary maps a perfect vehicle builds at its true poses,
                     anchored with a random error, aligned and merged by the aggregator
   --align-mode MODE truthmaps: ours (dominant directions) or paper (the paper's sequence) [ours]
@@ -61,18 +64,18 @@ bool Parse(int argc, char** argv, Args& a) {
       dst = argv[++i];
       return true;
     };
-    if (arg == "--scenario"   ? !value(a.scenario)
-        : arg == "--map"      ? !value(a.map)
-        : arg == "--pipeline" ? !value(a.pipeline)
-        : arg == "--out"      ? !value(a.out)
-        : arg == "--name"     ? !value(a.name)
+    if (arg == "--scenario"           ? !value(a.scenario)
+        : arg == "--map"              ? !value(a.map)
+        : arg == "--pipeline"         ? !value(a.pipeline)
+        : arg == "--out"              ? !value(a.out)
+        : arg == "--name"             ? !value(a.name)
         : arg == "--align-mode"       ? !value(a.align_mode)
         : arg == "--anchor-error-m"   ? !value(a.anchor_error_m)
         : arg == "--anchor-error-deg" ? !value(a.anchor_error_deg)
         : arg == "--confirmations"    ? !value(a.confirmations)
         : arg == "--seed"             ? !value(a.seed)
-        : arg == "--quiet"    ? (a.quiet = true, false)
-                              : true) {
+        : arg == "--quiet"            ? (a.quiet = true, false)
+                                      : true) {
       std::fprintf(stderr, "fleetmap-eval: bad or incomplete argument '%s'\n", arg.c_str());
       return false;
     }
@@ -115,6 +118,14 @@ double Number(const std::string& text) {
 core::Result<std::unique_ptr<eval::Pipeline>> MakePipeline(const Args& args,
                                                            const sim::World& world) {
   if (args.pipeline == "oracle") return eval::MakeOraclePipeline();
+  if (args.pipeline == "agents") {
+    eval::AgentsPipelineOptions agents;
+    FLEETMAP_ASSIGN_OR_RETURN(agents.aggregator.alignment.mode,
+                              aggregator::ParseAlignmentMode(args.align_mode));
+    const double confirmations = Number(args.confirmations);
+    agents.aggregator.merge.confirmations = confirmations == 1.0 ? 1 : 2;
+    return eval::MakeAgentsPipeline(world, agents);
+  }
   eval::TruthTempMapOptions options;
   FLEETMAP_ASSIGN_OR_RETURN(options.aggregator.alignment.mode,
                             aggregator::ParseAlignmentMode(args.align_mode));
@@ -147,8 +158,9 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, stderr);
     return 2;
   }
-  if (args.pipeline != "oracle" && args.pipeline != "truthmaps") {
-    std::fprintf(stderr, "fleetmap-eval: unknown pipeline '%s' (known: oracle, truthmaps)\n",
+  if (args.pipeline != "oracle" && args.pipeline != "truthmaps" && args.pipeline != "agents") {
+    std::fprintf(stderr,
+                 "fleetmap-eval: unknown pipeline '%s' (known: oracle, truthmaps, agents)\n",
                  args.pipeline.c_str());
     return 2;
   }
@@ -178,7 +190,8 @@ int main(int argc, char** argv) {
   for (const core::Status& s :
        {core::WriteFileAtomically(out + "/report.json", eval::ReportJson(report)),
         core::WriteFileAtomically(out + "/report.md", eval::ReportMarkdown(report)),
-        core::WriteFileAtomically(out + "/merges.md", MergeTable(run, world->geometry().resolution_m())),
+        core::WriteFileAtomically(out + "/merges.md",
+                                  MergeTable(run, world->geometry().resolution_m())),
         core::SaveMapServerMap(run.final_map, out + "/current_map.yaml"),
         core::RenderGridToPng(run.final_map, out + "/current_map.png"),
         eval::WriteOverlayPng(*world, simulator.observations(), run, out + "/map_overlay.png"),

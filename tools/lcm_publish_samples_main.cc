@@ -180,6 +180,7 @@ void PublishRound(lcm::LCM& lcm, int round) {
   temp.tile_index = 0;
   temp.tile_count = 1;
   temp.anchor_pose = Pose(12.0, 4.0, 0.0);
+  temp.grid_origin = Pose(-0.8, -0.8, 0.0);
   temp.resolution_m = 0.05f;
   temp.width_cells = 32;
   temp.height_cells = 32;

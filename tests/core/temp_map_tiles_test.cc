@@ -46,6 +46,9 @@ TEST(TempMapTilesTest, SplitAndAssembleInAnyOrder) {
   ASSERT_TRUE(done.has_value());
   EXPECT_EQ(assembler.pending(), 0u);
   // Same placement, same cells within the int8 quantum.
+  // The aggregator turns a map about its anchor: the anchor itself must survive the trip.
+  EXPECT_EQ(done->anchor_in_map.x_m, original.anchor_in_map.x_m);
+  EXPECT_EQ(done->anchor_in_map.theta_rad, original.anchor_in_map.theta_rad);
   const GridGeometry a = original.PlacedGeometry(), b = done->PlacedGeometry();
   EXPECT_NEAR(a.origin().x_m, b.origin().x_m, 1e-12);
   EXPECT_NEAR(a.origin().theta_rad, b.origin().theta_rad, 1e-12);
@@ -84,7 +87,7 @@ TEST(TempMapTilesTest, BadTilesAreRefusedWithAReason) {
   // A tile that disagrees with its map's first tile is refused; the first one is kept.
   ASSERT_TRUE(assembler.Add(tiles[0]).ok());
   t = tiles[1];
-  t.corner_in_map.x_m += 1.0;
+  t.anchor_in_map.x_m += 1.0;
   EXPECT_THAT(assembler.Add(t).status().message(), HasSubstr("disagrees"));
   EXPECT_EQ(assembler.Received("cts1", 7).size(), 1u);
 }

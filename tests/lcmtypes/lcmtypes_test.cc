@@ -140,6 +140,8 @@ tempmap_tile_t MakeSample<tempmap_tile_t>() {
   t.tile_index = 2;
   t.tile_count = 6;
   t.anchor_pose = MakeSample<pose2d_t>();
+  t.grid_origin = MakeSample<pose2d_t>();
+  t.grid_origin.x_m = -3.5;
   t.resolution_m = 0.05f;
   t.width_cells = 200;
   t.height_cells = 150;
@@ -323,6 +325,7 @@ void ExpectSame(const tempmap_tile_t& a, const tempmap_tile_t& b) {
   EXPECT_EQ(a.tile_index, b.tile_index);
   EXPECT_EQ(a.tile_count, b.tile_count);
   ExpectSame(a.anchor_pose, b.anchor_pose);
+  ExpectSame(a.grid_origin, b.grid_origin);
   EXPECT_EQ(a.resolution_m, b.resolution_m);
   EXPECT_EQ(a.width_cells, b.width_cells);
   EXPECT_EQ(a.height_cells, b.height_cells);

@@ -16,21 +16,24 @@ void ScanDisagreement::SetMap(const core::OccupancyGrid& map,
     for (int x = 0; x < w; ++x) {
       if (classify(map.cells()[size_t(y) * w + x]) != core::CellState::kOccupied) continue;
       for (int dy = std::max(0, y - r); dy <= std::min(h - 1, y + r); ++dy)
-        for (int dx = std::max(0, x - r); dx <= std::min(w - 1, x + r); ++dx) near[size_t(dy) * w + dx] = 1;
+        for (int dx = std::max(0, x - r); dx <= std::min(w - 1, x + r); ++dx)
+          near[size_t(dy) * w + dx] = 1;
     }
   }
   free_far_.assign(near.size(), 0);
   for (size_t i = 0; i < near.size(); ++i)
     free_far_[i] = !near[i] && classify(map.cells()[i]) == core::CellState::kFree;
   semi_static_ = semi_static;
-  any_semi_static_ = std::any_of(semi_static.begin(), semi_static.end(), [](uint8_t s) { return s; });
+  any_semi_static_ =
+      std::any_of(semi_static.begin(), semi_static.end(), [](uint8_t s) { return s; });
 }
 
 bool ScanDisagreement::PassesObstacle(const Eigen::Vector2d& from, const Eigen::Vector2d& direction,
                                       double length_m) const {
   // Walk in grid coordinates, one cell per step.
   const Eigen::Vector2d g0 = geometry_.WorldToGrid(from);
-  const Eigen::Vector2d dg = geometry_.WorldToGrid(from + direction * geometry_.resolution_m()) - g0;
+  const Eigen::Vector2d dg =
+      geometry_.WorldToGrid(from + direction * geometry_.resolution_m()) - g0;
   const int steps = static_cast<int>(length_m / geometry_.resolution_m());
   for (int k = 0; k < steps; ++k) {
     const Eigen::Vector2d g = g0 + k * dg;
@@ -58,9 +61,12 @@ Disagreement ScanDisagreement::Judge(const core::LaserScan& scan,
       marked[i] = marked[i] || (geometry_.Contains(c) && free_far_[size_t(geometry_.Index(c))]);
     }
     if (!marked[i] && any_semi_static_ && i % size_t(options_.pass_beam_step) == 0) {
-      const double length = std::min(range, options_.max_range_m) - options_.pass_end_margin_cells * res;
+      const double length =
+          std::min(range, options_.max_range_m) - options_.pass_end_margin_cells * res;
       marked[i] = PassesObstacle(scanner_in_map.translation(), dir, length);
-      for (size_t k = i + 1; marked[i] && k < std::min(scan.size(), i + options_.pass_beam_step); ++k) marked[k] = 1;
+      for (size_t k = i + 1; marked[i] && k < std::min(scan.size(), i + options_.pass_beam_step);
+           ++k)
+        marked[k] = 1;
     }
     if (marked[i]) sum += end;
   }

@@ -13,16 +13,16 @@
 namespace fleetmap::eval {
 
 struct DisagreementOptions {
-  double max_range_m = 18.0;     // returns and beams beyond this are not judged
-  int clearance_cells = 2;       // a return this close to an occupied cell agrees
-  int pass_beam_step = 2;        // beams checked for passing through obstacles (every n-th)
+  double max_range_m = 18.0;      // returns and beams beyond this are not judged
+  int clearance_cells = 2;        // a return this close to an occupied cell agrees
+  int pass_beam_step = 2;         // beams checked for passing through obstacles (every n-th)
   int pass_end_margin_cells = 3;  // cells before a return not judged (range noise)
-  int min_run_beams = 4;         // neighbouring disagreeing beams that make a change
+  int min_run_beams = 4;          // neighbouring disagreeing beams that make a change
 };
 
 struct Disagreement {
   int disagreeing_beams = 0;
-  int longest_run = 0;                               // neighbouring disagreeing beams
+  int longest_run = 0;                                 // neighbouring disagreeing beams
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();  // of their end points, map frame
   bool changed(const DisagreementOptions& o) const { return longest_run >= o.min_run_beams; }
 };
@@ -40,7 +40,7 @@ class ScanDisagreement {
 
   DisagreementOptions options_;
   core::GridGeometry geometry_;
-  std::vector<uint8_t> free_far_;     // free and no occupied cell within clearance
+  std::vector<uint8_t> free_far_;  // free and no occupied cell within clearance
   std::vector<uint8_t> semi_static_;
   bool any_semi_static_ = false;
 };

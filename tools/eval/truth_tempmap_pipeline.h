@@ -6,7 +6,8 @@
 // anchor is the true start pose perturbed by a seeded random error (uniform magnitude up to
 // anchor_error_max_m, uniform direction, uniform rotation within +-anchor_error_max_rad), and
 // the aggregator aligns and merges it. So the evaluation scores the aggregator alone: its
-// alignment against the truth, and the map it makes.
+// alignment against the truth, and the map it makes. A map rejected because it holds too
+// little of the building is extended and sent again (max_extensions).
 #pragma once
 
 #include <memory>
@@ -26,19 +27,23 @@ struct TruthTempMapOptions {
   // The grid's centre lies this far from the vehicle towards the disagreement (at most as
   // far as the disagreement), so what started the map is inside it.
   double grid_lead_m = 8.0;
-  double max_duration_s = 8.0;    // a temporary map closes after this long ...
-  double max_distance_m = 4.0;    // ... or once the vehicle drove this far ...
-  double quiet_close_s = 3.0;     // ... or when no disagreement was seen for this long,
-  double min_duration_s = 2.0;    //     but not before this
+  double max_duration_s = 8.0;  // a temporary map closes after this long ...
+  double max_distance_m = 4.0;  // ... or once the vehicle drove this far ...
+  double quiet_close_s = 3.0;   // ... or when no disagreement was seen for this long,
+  double min_duration_s = 2.0;  //     but not before this
+  // A map rejected for too few static lines or an ambiguous shift is kept and extended (its
+  // time and distance limits grow by their own size) up to this many times, as a vehicle
+  // told so would do: it then holds more of the building. Other rejections start afresh.
+  int max_extensions = 2;
   double anchor_error_max_m = 0.3;
   double anchor_error_max_rad = 3.0 * M_PI / 180;
-  uint32_t seed = 0;  // added to the scenario's seed for the anchor errors
+  uint32_t seed = 0;                 // added to the scenario's seed for the anchor errors
   double divergence_period_s = 0.2;  // how often a DivergenceSample is recorded per vehicle
   core::Status Validate() const;
 };
 
 // `world` outlives the pipeline. InvalidArgument for bad options, or the aggregator's error.
-core::Result<std::unique_ptr<Pipeline>> MakeTruthTempMapPipeline(const sim::World& world,
-                                                                 const TruthTempMapOptions& options);
+core::Result<std::unique_ptr<Pipeline>> MakeTruthTempMapPipeline(
+    const sim::World& world, const TruthTempMapOptions& options);
 
 }  // namespace fleetmap::eval

@@ -1,0 +1,122 @@
+#include "aggregator/journal.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/aggregator/test_files.h"
+
+namespace fleetmap::aggregator {
+namespace {
+
+using testing::ReadAll;
+using testing::WriteAll;
+
+std::vector<uint8_t> Payload(int i) { return std::vector<uint8_t>(10 + i, uint8_t(i)); }
+
+class JournalTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto writer = JournalWriter::Open(path_, 0);
+    ASSERT_TRUE(writer.ok()) << writer.status().ToString();
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(writer->Append(Payload(i)).ok());
+    good_ = ReadAll(path_);
+  }
+  JournalContents Read() {
+    auto c = ReadJournal(path_, 1 << 20);
+    EXPECT_TRUE(c.ok()) << c.status().ToString();
+    return c.ok() ? *c : JournalContents{};
+  }
+  // After a torn tail: the first two records survive, and appending continues cleanly.
+  void ExpectTwoThenRecovers() {
+    const JournalContents c = Read();
+    EXPECT_TRUE(c.torn_tail);
+    ASSERT_EQ(c.records.size(), 2u);
+    EXPECT_EQ(c.records[1], Payload(1));
+    auto writer = JournalWriter::Open(path_, c.valid_bytes);
+    ASSERT_TRUE(writer.ok());
+    ASSERT_TRUE(writer->Append(Payload(7)).ok());
+    const JournalContents after = Read();
+    EXPECT_FALSE(after.torn_tail);
+    ASSERT_EQ(after.records.size(), 3u);
+    EXPECT_EQ(after.records[2], Payload(7));
+  }
+
+  testing::ScratchFolder folder_;
+  std::string path_ = folder_.File("journal.fmj");
+  std::vector<char> good_;
+};
+
+TEST_F(JournalTest, ReadsBackWhatWasAppended) {
+  const JournalContents c = Read();
+  EXPECT_FALSE(c.torn_tail);
+  ASSERT_EQ(c.records.size(), 3u);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(c.records[i], Payload(i));
+  EXPECT_EQ(c.valid_bytes, good_.size());
+}
+
+TEST_F(JournalTest, HalfWrittenLastRecordIsDropped) {
+  std::vector<char> torn(good_.begin(), good_.end() - 5);
+  WriteAll(path_, torn);
+  ExpectTwoThenRecovers();
+}
+
+TEST_F(JournalTest, ShortLastRecordHeaderIsDropped) {
+  const size_t last = good_.size() - (kJournalRecordHeaderBytes + Payload(2).size());
+  WriteAll(path_, std::vector<char>(good_.begin(), good_.begin() + last + 7));
+  ExpectTwoThenRecovers();
+}
+
+TEST_F(JournalTest, LastRecordFailingItsCrcIsDropped) {
+  std::vector<char> bad = good_;
+  bad[bad.size() - 3] ^= 0x40;
+  WriteAll(path_, bad);
+  ExpectTwoThenRecovers();
+}
+
+TEST_F(JournalTest, ZerosAfterTheLastRecordAreDropped) {
+  std::vector<char> padded = good_;
+  padded.resize(good_.size() + 30, 0);
+  WriteAll(path_, padded);
+  const JournalContents c = Read();
+  EXPECT_TRUE(c.torn_tail);
+  EXPECT_EQ(c.records.size(), 3u);
+}
+
+TEST_F(JournalTest, CorruptionBeforeTheEndIsAnError) {
+  std::vector<char> bad = good_;
+  bad[kJournalHeaderBytes + kJournalRecordHeaderBytes + 2] ^= 0x01;  // first record's payload
+  WriteAll(path_, bad);
+  EXPECT_EQ(ReadJournal(path_, 1 << 20).status().code(), core::StatusCode::kDataLoss);
+  WriteAll(path_, {'n', 'o', 't', ' ', 'o', 'u', 'r', 's', '!'});
+  EXPECT_EQ(ReadJournal(path_, 1 << 20).status().code(), core::StatusCode::kDataLoss);
+  EXPECT_EQ(ReadJournal(folder_.File("none"), 1 << 20).status().code(),
+            core::StatusCode::kNotFound);
+}
+
+TEST_F(JournalTest, FullDiskFailsTheAppendAndLeavesNoPartialRecord) {
+  auto writer = JournalWriter::Open(path_, good_.size());
+  ASSERT_TRUE(writer.ok());
+  {
+    testing::FileSizeLimit full(good_.size() + 6);  // room for half a record header
+    const core::Status s = writer->Append(Payload(5));
+    EXPECT_EQ(s.code(), core::StatusCode::kIoError);
+    EXPECT_NE(s.message().find("journal write failed"), std::string::npos) << s.ToString();
+  }
+  EXPECT_EQ(std::filesystem::file_size(path_), good_.size());
+  EXPECT_EQ(Read().records.size(), 3u);
+  EXPECT_FALSE(Read().torn_tail);
+  ASSERT_TRUE(writer->Append(Payload(5)).ok());  // room again: appending goes on
+  EXPECT_EQ(Read().records.size(), 4u);
+}
+
+TEST_F(JournalTest, ResetEmptiesIt) {
+  auto writer = JournalWriter::Open(path_, good_.size());
+  ASSERT_TRUE(writer.ok());
+  ASSERT_TRUE(writer->Reset().ok());
+  EXPECT_TRUE(Read().records.empty());
+  EXPECT_EQ(writer->size_bytes(), kJournalHeaderBytes);
+}
+
+}  // namespace
+}  // namespace fleetmap::aggregator

@@ -1,0 +1,190 @@
+#include "aggregator/merge.h"
+
+#include <gtest/gtest.h>
+
+#include "aggregator/aggregator.h"
+#include "aggregator/current_map_store.h"
+#include "tests/aggregator/test_hall.h"
+
+namespace fleetmap::aggregator {
+namespace {
+
+constexpr float kHit = 4.6f, kFree = -4.6f;
+
+// 20 x 20 cells at 5 cm: a wall on row 0, free elsewhere.
+core::OccupancyGrid SmallMap() {
+  core::OccupancyGrid grid(core::GridGeometry(0.05, 20, 20));
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 20; ++x)
+      grid.SetState({x, y}, y == 0 ? core::CellState::kOccupied : core::CellState::kFree);
+  return grid;
+}
+
+// Evidence over the whole map, 0 (unobserved) except where set.
+PlacedEvidence Evidence() {
+  PlacedEvidence e;
+  e.map_width = 20;
+  e.window = {0, 0, 20, 20};
+  e.log_odds.assign(400, 0.0f);
+  return e;
+}
+void Set(PlacedEvidence& e, int x0, int y0, int x1, int y1, float l) {
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) e.log_odds[size_t(y) * 20 + x] = l;
+}
+
+class MergeTest : public ::testing::Test {
+ protected:
+  MergePlan Plan(const PlacedEvidence& e, TimeSpan span) {
+    addable_ = AddableCells(store_.static_map(), options_);
+    const MergeInputs in{&addable_, &store_.semi_static(), &store_.candidates(),
+                         &store_.candidate_mask()};
+    return PlanMerge(e, span, in, options_);
+  }
+  void Commit(const MergePlan& plan, TimeSpan span) {
+    MergeCommit c{
+        store_.version() + 1, {"v1", 1, span.start_s, span.end_s, span.end_s}, {}, plan.changes};
+    ASSERT_TRUE(store_.Apply(c).ok());
+  }
+  int64_t Semi() const {
+    return std::count(store_.semi_static().begin(), store_.semi_static().end(), 1);
+  }
+
+  MergeOptions options_;
+  CurrentMapStore store_{SmallMap(), {}};
+  std::vector<uint8_t> addable_;
+};
+
+TEST_F(MergeTest, FirstSightOnlyWithOneConfirmation) {
+  options_.confirmations = 1;
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  const MergePlan plan = Plan(e, {0, 10});
+  EXPECT_EQ(plan.added, 9);
+  EXPECT_EQ(plan.dirty, (core::CellWindow{8, 8, 3, 3}));
+}
+
+TEST_F(MergeTest, AnObstacleNeedsASecondMapOfAnotherTime) {
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  MergePlan first = Plan(e, {0, 10});
+  EXPECT_EQ(first.added, 0);
+  EXPECT_EQ(first.candidates, 9);
+  Commit(first, {0, 10});
+  EXPECT_EQ(Semi(), 0);
+  EXPECT_EQ(Plan(e, {11, 20}).added, 0);  // touching in time: a person passing by is in both
+  const MergePlan later = Plan(e, {15, 25});
+  EXPECT_EQ(later.added, 9);
+  Commit(later, {15, 25});
+  EXPECT_EQ(Semi(), 9);
+  EXPECT_TRUE(store_.candidates().empty());
+}
+
+TEST_F(MergeTest, ACandidateSeenFreeIsDropped) {
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  Commit(Plan(e, {0, 10}), {0, 10});
+  Set(e, 8, 8, 10, 10, kFree);
+  const MergePlan gone = Plan(e, {20, 30});
+  EXPECT_EQ(gone.dropped, 9);
+  Commit(gone, {20, 30});
+  EXPECT_TRUE(store_.candidates().empty());
+  EXPECT_EQ(Semi(), 0);
+}
+
+TEST_F(MergeTest, StaticCellsNeverChangeAndTheirSurroundingsAreNotAdded) {
+  options_.confirmations = 1;
+  PlacedEvidence e = Evidence();
+  Set(e, 0, 0, 19, 3, kHit);  // the wall row and the rows in front of it, all "occupied"
+  Set(e, 0, 5, 19, 19, kFree);
+  const MergePlan plan = Plan(e, {0, 10});
+  ASSERT_EQ(plan.added, 20);  // only row 3: rows 1 and 2 lie within the clearance
+  for (const CellChange& c : plan.changes) EXPECT_EQ(c.cell / 20, 3);
+}
+
+TEST_F(MergeTest, AnIsolatedReturnIsNoObstacle) {
+  options_.confirmations = 1;
+  PlacedEvidence e = Evidence();
+  Set(e, 10, 10, 10, 10, kHit);
+  EXPECT_EQ(Plan(e, {0, 10}).added, 0);
+  Set(e, 11, 10, 11, 10, kHit);
+  EXPECT_EQ(Plan(e, {0, 10}).added, 2);
+}
+
+TEST_F(MergeTest, RemovalNeedsTheWholeNeighbourhoodSeenFree) {
+  options_.confirmations = 1;
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 11, 10, kHit);
+  Commit(Plan(e, {0, 10}), {0, 10});
+  ASSERT_EQ(Semi(), 12);
+  // A strip seen free while the rest of the obstacle is unobserved: kept.
+  e = Evidence();
+  Set(e, 8, 10, 11, 11, kFree);
+  EXPECT_EQ(Plan(e, {20, 30}).removed, 0);
+  // The whole obstacle seen free: removed.
+  Set(e, 7, 7, 12, 11, kFree);
+  const MergePlan gone = Plan(e, {20, 30});
+  EXPECT_EQ(gone.removed, 12);
+  // Free but one cell still hit next to it: the cells around the hit stay.
+  Set(e, 8, 8, 8, 8, kHit);
+  EXPECT_LT(Plan(e, {20, 30}).removed, 12);
+}
+
+TEST(MergeOptionsTest, ValidateNamesTheBadField) {
+  MergeOptions o;
+  o.confirmations = 3;
+  EXPECT_NE(o.Validate().message().find("confirmations"), std::string::npos);
+  o = {};
+  o.remove_max_log_odds = 1;
+  EXPECT_NE(o.Validate().message().find("remove_max_log_odds"), std::string::npos);
+}
+
+// The test: a removal clears the pallet but not the wall behind it.
+TEST(MergeHallTest, RemovalClearsThePalletButNotTheWallBehindIt) {
+  using testing::BuildTempMap;
+  const core::OccupancyGrid hall = testing::HallMap();
+  // A pallet 0.4 m in front of the north wall (whose face is at y = 19.85).
+  const testing::Box pallet{{15.0, 19.05}, {1.2, 0.8}};
+  const core::OccupancyGrid with_pallet = testing::HallMap(0.0, {pallet});
+  auto aggregator = Aggregator::Create(hall, {});
+  ASSERT_TRUE(aggregator.ok());
+  testing::TempMapSpec spec;
+  spec.start = {13.013, 16.027, 0.0};
+  spec.anchor_error = {0.1, -0.08, 1.0 * M_PI / 180};
+  spec.start_s = 0, spec.end_s = 10, spec.sequence = 1;
+  ASSERT_TRUE(aggregator->Submit(BuildTempMap(with_pallet, spec), 10).value().accepted);
+  spec.start_s = 20, spec.end_s = 30, spec.sequence = 2, spec.seed = 8;
+  spec.anchor_error = {-0.12, 0.1, -1.5 * M_PI / 180};
+  const MergeReport seen = aggregator->Submit(BuildTempMap(with_pallet, spec), 30).value();
+  ASSERT_TRUE(seen.accepted) << seen.reason_text;
+  EXPECT_GT(seen.cells_added, 40);  // the pallet's faces the vehicle saw
+  const core::GridGeometry& g = hall.geometry();
+  const int64_t pallet_face = g.Index(g.WorldToCell({15.0, 18.63}));
+  ASSERT_TRUE(aggregator->store().semi_static()[pallet_face]);
+
+  spec.start_s = 40, spec.end_s = 50, spec.sequence = 3, spec.seed = 9;
+  spec.anchor_error = {0.05, 0.15, 2.0 * M_PI / 180};
+  const MergeReport gone = aggregator->Submit(BuildTempMap(hall, spec), 50).value();
+  ASSERT_TRUE(gone.accepted) << gone.reason_text;
+  EXPECT_GT(gone.cells_removed, 40);
+  // No obstacle left near the pallet, and every static cell as it was.
+  for (int y = g.WorldToCell({0, 18.0}).y; y < g.height(); ++y) {
+    for (int x = g.WorldToCell({13.5, 0}).x; x <= g.WorldToCell({16.5, 0}).x; ++x) {
+      EXPECT_FALSE(aggregator->store().semi_static()[g.Index({x, y})]) << x << ", " << y;
+      EXPECT_EQ(aggregator->store().current_map().log_odds({x, y}), hall.log_odds({x, y}));
+    }
+  }
+  EXPECT_EQ(aggregator->store().current_map().cells(), hall.cells());
+  // The history answers what changed where, when, seen by whom.
+  const auto history = aggregator->store().provenance().HistoryOf(pallet_face);
+  ASSERT_GE(history.size(), 2u);
+  EXPECT_EQ(history.front().kind, CellChangeKind::kCandidate);
+  EXPECT_EQ(history.back().kind, CellChangeKind::kRemoved);
+  EXPECT_EQ(history.back().source->vehicle_id, "v1");
+  EXPECT_EQ(history.back().source->tempmap_sequence, 3);
+  EXPECT_EQ(history.back().source->merged_s, 50.0);
+  EXPECT_EQ(history.back().version, aggregator->store().version());
+}
+
+}  // namespace
+}  // namespace fleetmap::aggregator

@@ -1,0 +1,79 @@
+#include "tools/eval/truth_tempmap_pipeline.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/sim/sim_test_util.h"
+#include "tools/eval/evaluator.h"
+
+namespace fleetmap::eval {
+namespace {
+
+// A 10 m x 6 m room with a box there from the start and one that comes and goes; one vehicle
+// drives back and forth past both.
+constexpr const char* kRoom = R"(
+name: room
+map: room.yaml
+duration_s: 70
+seed: 4
+objects:
+  - {id: box_a, rect: {center: [3, 1.5], size: [0.8, 0.6]}}
+  - {id: box_b, rect: {center: [7, 4.5], size: [1.0, 0.8]}, appear_s: 5, disappear_s: 40}
+vehicles:
+  - {id: v1, route: [[1.013, 3.027], [9.013, 3.027]], loop: true, speed_mps: 1.0}
+)";
+
+class TruthTempMapPipelineTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    world_ = std::make_unique<sim::World>(
+        sim::World::Create(sim::ParseScenario(kRoom, "room.yaml").value(), sim::testing::Room())
+            .value());
+  }
+  EvalReport Run(const TruthTempMapOptions& options) {
+    auto pipeline = MakeTruthTempMapPipeline(*world_, options);
+    EXPECT_TRUE(pipeline.ok()) << pipeline.status().ToString();
+    sim::Simulator simulator(world_.get());
+    run_ = RunScenario(*world_, **pipeline, simulator);
+    return Evaluate(*world_, simulator.observations(), run_);
+  }
+  std::unique_ptr<sim::World> world_;
+  RunRecord run_;
+};
+
+TEST_F(TruthTempMapPipelineTest, MergesWhatAPerfectVehicleSawAtTheTruePlace) {
+  TruthTempMapOptions options;
+  options.anchor_error_max_m = 0.2;
+  options.anchor_error_max_rad = 2.0 * M_PI / 180;
+  const EvalReport r = Run(options);
+  EXPECT_EQ(run_.pipeline, "truthmaps-ours");
+  EXPECT_GE(r.merges_accepted, 3);
+  EXPECT_EQ(r.changes.static_cells_erased, 0);
+  EXPECT_GT(r.changes.added_recall, 0.8);    // box_a is in the map
+  EXPECT_GT(r.changes.removed_recall, 0.5);  // box_b came and went
+  EXPECT_LE(r.align_translation_cells.p95, 1.0);
+  EXPECT_LE(r.align_rotation_deg.p95, 0.5);
+  for (const MergeRecord& m : run_.merges) {
+    if (!m.accepted) continue;
+    EXPECT_FALSE(m.lines.empty());  // the paper's table rows
+    EXPECT_LT(std::hypot(m.placed_origin.x_m - m.true_origin.x_m,
+                         m.placed_origin.y_m - m.true_origin.y_m),
+              0.05);
+  }
+  EXPECT_FALSE(run_.divergence.empty());
+}
+
+TEST_F(TruthTempMapPipelineTest, SameSeedSameRunAndBadOptionsAreRefused) {
+  TruthTempMapOptions options;
+  Run(options);
+  const RunRecord first = run_;
+  Run(options);
+  EXPECT_EQ(first.final_map.cells(), run_.final_map.cells());
+  ASSERT_EQ(first.merges.size(), run_.merges.size());
+  for (size_t i = 0; i < first.merges.size(); ++i)
+    EXPECT_EQ(first.merges[i].placed_origin.x_m, run_.merges[i].placed_origin.x_m);
+  options.anchor_error_max_m = -1;
+  EXPECT_FALSE(MakeTruthTempMapPipeline(*world_, options).ok());
+}
+
+}  // namespace
+}  // namespace fleetmap::eval
