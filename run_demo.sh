@@ -1,49 +1,54 @@
 #!/usr/bin/env bash
 # The main job, on an embedded default: the simulated LivingLab hall (the paper's 60 m x 18 m
-# test hall) with three vehicles, pallets placed and taken away and people walking.
-# Installs what is missing, builds, runs, and ends with the updated map as a PNG and a short
-# report in out/demo/.
-#   ./run_demo.sh [--scenario SCENARIO.yaml]
-#
-# Stage: the vehicles are simulated and their changes are merged by the oracle pipeline
-# (exactly what the scanners saw); the on-board perception, the aggregator and the LCM fleet
-# replace the oracle as they land (DESIGN.md).
+# test hall) with three vehicles, pallets placed and taken away, people walking. Each vehicle
+# runs its own fleetmap-agent, the server fleetmap-aggregator, all talking over real LCM UDP
+# multicast on loopback, recorded by lcm-logger; then the run is scored against the truth.
+# Installs what is missing, builds, runs (a few minutes on 2 cores), and prints where the
+# results are: out/current_map.png, out/report.json, out/report.md, out/divergence.png, the
+# logs in out/logs/.
+#   ./run_demo.sh [--scenario FILE] [--speed X] [--duration S]
+#     --speed X: simulated seconds per wall-clock second [4]; see scripts/fleet_run.sh.
 set -euo pipefail
 cd "$(dirname "$0")"
 
-scenario=tools/sim/worlds/livinglab/fleet.yaml
-case ${1:-} in
-  --scenario) scenario=${2:?--scenario needs a file} ;;
-  -h | --help) sed -n '2,11p' "$0"; exit 0 ;;
-  "") ;;
-  *) echo "run_demo.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
-esac
+args=()
+while [ $# -gt 0 ]; do
+  case $1 in
+    --scenario | --speed | --duration) args+=("$1" "${2:?$1 needs a value}"); shift 2 ;;
+    -h | --help) sed -n '2,10p' "$0"; exit 0 ;;
+    *) echo "run_demo.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
 
 step() { printf '\n== %s\n' "$*"; }
 
 step "1/4 installing missing packages and building"
 scripts/install_deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build build -j "$(nproc)" --target fleetmap-eval fleetmap-maptool
+cmake --build build -j "$(nproc)" --target fleetmap-sim fleetmap-agent fleetmap-aggregator \
+  fleetmap-eval fleetmap-maptool
 
-out=out/demo
-mkdir -p "$out"
-step "2/4 simulating $scenario and merging the changes"
-build/bin/fleetmap-eval --scenario "$scenario" --out "$out" --name demo | tee "$out/figures.txt"
+step "2/4 multicast on loopback (LCM needs a route for 224.0.0.0/4 and a large receive buffer)"
+scripts/setup_multicast.sh
 
-step "3/4 the map codec on the updated map"
-static_map=$(sed -n 's/^map: *//p' "$scenario")
-static_map="$(dirname "$scenario")/$static_map"
-build/bin/fleetmap-maptool codec "$out/current_map.yaml" | tee "$out/codec.txt"
-build/bin/fleetmap-maptool diff "$static_map" "$out/current_map.yaml" | tee -a "$out/codec.txt"
+step "3/4 the fleet: simulator, three agents and the aggregator over LCM multicast"
+scripts/fleet_run.sh --out out "${args[@]}"
 
 step "4/4 report"
-cat "$out/report.md"
+cat out/report.md
+echo
+grep -E '^(eval\.demo\.(changed_f1|static_erased|actor_mapped|merges_accepted|merges_rejected)|fleet\.(change_latency_s\.median|vehicle_maps_equal|final_version|bytes_per_s\.(TEMPMAP|MAP_DELTA|MAP_KEYFRAME|POSE|DIVERGENCE))|replay)' \
+  out/figures.txt || true
 cat <<DONE
 
-Results in $out/:
-  current_map.png        the updated map          current_map.yaml/.pgm  the same, map_server format
+Results in out/:
+  current_map.png        the updated map (what every vehicle holds at the end)
   map_overlay.png        the map against the truth (green ok, red false, blue missed, ...)
-  paths.png              the vehicles' paths      divergence.png         d(t), w_avg, w_fast, w_slow
-  report.json            every figure (keys: docs/evaluation.md)
+  divergence.png         d(t), w_avg, w_fast, w_slow per vehicle (the paper's Fig. 3)
+  paths.png              the vehicles' paths (estimated and true)
+  report.json            every figure (keys: docs/evaluation.md), report.md the summary
+  merges.md              every temporary map: accepted or rejected, residual, reason
+  figures.txt            the figures as 'name value unit' lines
+  logs/*.lcmlog          the recorded run (lcm-logplayer, lcm-spy; docs/channels.md)
+  maps/                  the aggregator's and each vehicle's final map (map_server YAML)
 DONE

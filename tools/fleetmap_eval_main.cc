@@ -14,6 +14,7 @@
 #include "tools/eval/eval_figures.h"
 #include "tools/eval/pipeline.h"
 #include "tools/eval/truth_tempmap_pipeline.h"
+#include "tools/evallog/recorded_run.h"
 
 namespace {
 
@@ -42,6 +43,13 @@ options:
   --confirmations N       truthmaps: temporary maps of different times that must see an
                           obstacle before it is added: 1 (the paper) or 2         [2]
   --seed N                truthmaps: added to the scenario's seed for the anchor errors [0]
+  --lcm-log FILE     score a recorded fleet run instead of running a pipeline: the
+                    lcm-logger logs of its sensor, uplink and downlink groups (repeat the
+                    flag); adds fleet.* keys (bytes per channel, change latency) to report.json
+  --epoch S         recorded run: the epoch fleetmap-sim added to simulated time  [0]
+  --duration S      recorded run: the simulated seconds it ran  [the scenario's duration]
+  --vehicle-map ID=FILE  recorded run: a vehicle's final map (fleetmap-agent --final-map),
+                    compared cell by cell with the fleet's final map (repeat the flag)
   --out DIR         output folder                                 [out/eval/<scenario name>]
   --name NAME       name used in the figure lines                 [the scenario's name]
   --quiet           no progress lines on stderr
@@ -54,6 +62,8 @@ struct Args {
   std::string scenario, map, pipeline = "oracle", out, name, align_mode = "ours";
   std::string anchor_error_m = "0.3", anchor_error_deg = "3", confirmations = "2", seed = "0";
   bool quiet = false;
+  std::vector<std::string> lcm_logs, vehicle_maps;
+  std::string epoch = "0", duration;
 };
 
 bool Parse(int argc, char** argv, Args& a) {
@@ -74,8 +84,12 @@ bool Parse(int argc, char** argv, Args& a) {
         : arg == "--anchor-error-deg" ? !value(a.anchor_error_deg)
         : arg == "--confirmations"    ? !value(a.confirmations)
         : arg == "--seed"             ? !value(a.seed)
-        : arg == "--quiet"            ? (a.quiet = true, false)
-                                      : true) {
+        : arg == "--epoch"            ? !value(a.epoch)
+        : arg == "--duration"         ? !value(a.duration)
+        : arg == "--lcm-log"          ? (a.lcm_logs.emplace_back(), !value(a.lcm_logs.back()))
+        : arg == "--vehicle-map" ? (a.vehicle_maps.emplace_back(), !value(a.vehicle_maps.back()))
+        : arg == "--quiet"       ? (a.quiet = true, false)
+                                 : true) {
       std::fprintf(stderr, "fleetmap-eval: bad or incomplete argument '%s'\n", arg.c_str());
       return false;
     }
@@ -144,6 +158,109 @@ void Figure(const std::string& name, const char* figure, double value, const cha
   std::printf("eval.%s.%s %.6g %s\n", name.c_str(), figure, value, unit);
 }
 
+int WriteResults(const Args& args, const sim::World& world, const sim::Simulator& simulator,
+                 const eval::RunRecord& run, const eval::EvalReport& report,
+                 const std::string& name, const std::string& out,
+                 const std::vector<std::pair<std::string, std::string>>& extra_json) {
+  std::string json = eval::ReportJson(report);
+  if (!extra_json.empty()) {  // the report's flat object, extended by more keys
+    json.erase(json.rfind('}'));
+    json.erase(json.find_last_not_of(" \n") + 1);
+    for (const auto& [key, value] : extra_json) json += ",\n  \"" + key + "\": " + value;
+    json += "\n}\n";
+  }
+  for (const core::Status& s :
+       {core::WriteFileAtomically(out + "/report.json", json),
+        core::WriteFileAtomically(out + "/report.md", eval::ReportMarkdown(report)),
+        core::WriteFileAtomically(out + "/merges.md",
+                                  MergeTable(run, world.geometry().resolution_m())),
+        core::SaveMapServerMap(run.final_map, out + "/current_map.yaml"),
+        core::RenderGridToPng(run.final_map, out + "/current_map.png"),
+        eval::WriteOverlayPng(world, simulator.observations(), run, out + "/map_overlay.png"),
+        eval::WriteDivergencePng(run, out + "/divergence.png"),
+        eval::WritePathsPng(world, run, out + "/paths.png")}) {
+    if (!s.ok()) return Fail(s);
+  }
+  const eval::ChangeScores& c = report.changes;
+  Figure(name, "changed_f1", c.f1, "ratio");
+  Figure(name, "static_erased", double(c.static_cells_erased), "cells");
+  Figure(name, "actor_mapped", double(c.actor_cells_mapped), "cells");
+  Figure(name, "align_trans_median_cells", report.align_translation_cells.median, "cells");
+  Figure(name, "align_trans_p95_cells", report.align_translation_cells.p95, "cells");
+  Figure(name, "align_rot_p95_deg", report.align_rotation_deg.p95, "deg");
+  Figure(name, "detect_latency_median_s", report.detection_latency_s.median, "s");
+  Figure(name, "align_trans_max_cells", report.align_translation_cells.max, "cells");
+  Figure(name, "align_rot_median_deg", report.align_rotation_deg.median, "deg");
+  Figure(name, "align_rot_max_deg", report.align_rotation_deg.max, "deg");
+  Figure(name, "merges_accepted", report.merges_accepted, "merges");
+  Figure(name, "merges_rejected", report.merges_rejected, "merges");
+  if (!args.quiet)
+    std::fprintf(stderr, "fleetmap-eval: wrote %s/report.json and figures\n", out.c_str());
+  return 0;
+}
+
+// How many vehicles' final maps (ID=FILE) hold exactly the fleet's final map, cell state by
+// cell state; each one that differs is named on stderr.
+core::Result<int> CountVehiclesHoldingMap(const std::vector<std::string>& vehicle_maps,
+                                          const core::OccupancyGrid& fleet_map) {
+  const core::TriStateClassifier classify;
+  int same = 0;
+  for (const std::string& spec : vehicle_maps) {
+    const size_t eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0)
+      return core::InvalidArgument("--vehicle-map needs ID=FILE, not '" + spec + "'");
+    auto loaded = core::LoadMapServerMap(spec.substr(eq + 1));
+    if (!loaded.ok()) return loaded.status();
+    const core::OccupancyGrid& map = loaded->grid;
+    size_t differ = 0;
+    if (map.cells().size() != fleet_map.cells().size()) differ = map.cells().size();
+    for (size_t i = 0; differ == 0 && i < map.cells().size(); ++i)
+      differ = classify(map.cells()[i]) != classify(fleet_map.cells()[i]) ? i + 1 : 0;
+    if (differ == 0) {
+      ++same;
+    } else {
+      std::fprintf(stderr,
+                   "fleetmap-eval: vehicle %s does not hold the fleet's final map (other "
+                   "size, or cell %zu differs)\n",
+                   spec.substr(0, eq).c_str(), differ - 1);
+    }
+  }
+  return same;
+}
+
+// Scores a fleet run recorded by lcm-logger: the simulator runs again (it is deterministic)
+// for the ground truth; the logs give what the system did.
+int RunRecorded(const Args& args, const sim::World& world, const std::string& name,
+                const std::string& out) {
+  evallog::RecordedRunOptions options;
+  options.epoch_s = Number(args.epoch);
+  const double duration =
+      args.duration.empty() ? world.scenario().duration_s : Number(args.duration);
+  if (!std::isfinite(options.epoch_s) || !(duration > 0)) {
+    std::fprintf(stderr, "fleetmap-eval: --epoch and --duration take numbers (duration > 0)\n");
+    return 2;
+  }
+  sim::Simulator simulator(&world);
+  while (auto event = simulator.Next())
+    if (sim::EventTime(*event) > duration) break;
+  auto recorded = evallog::ReadRecordedRun(args.lcm_logs, world, options);
+  if (!recorded.ok()) return Fail(recorded.status());
+  recorded->run.pipeline = "fleet";
+  const eval::EvalReport report = eval::Evaluate(world, simulator.observations(), recorded->run);
+  auto pairs = evallog::FleetJsonPairs(recorded->fleet);
+  std::string lines = evallog::FleetFigureLines(recorded->fleet);
+  if (!args.vehicle_maps.empty()) {
+    auto same = CountVehiclesHoldingMap(args.vehicle_maps, recorded->run.final_map);
+    if (!same.ok()) return Fail(same.status());
+    pairs.emplace_back("fleet.vehicle_maps_equal", std::to_string(*same));
+    pairs.emplace_back("fleet.vehicle_maps", std::to_string(args.vehicle_maps.size()));
+    lines += "fleet.vehicle_maps_equal " + std::to_string(*same) + " count\n";
+  }
+  const int rc = WriteResults(args, world, simulator, recorded->run, report, name, out, pairs);
+  std::fputs(lines.c_str(), stdout);
+  return rc;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -171,6 +288,7 @@ int main(int argc, char** argv) {
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) return Fail(core::IoError(out + ": " + ec.message()));
+  if (!args.lcm_logs.empty()) return RunRecorded(args, *world, name, out);
 
   if (!args.quiet) {
     std::fprintf(stderr, "fleetmap-eval: %s (%zu vehicles, %.0f s) through the %s pipeline\n",
@@ -186,33 +304,5 @@ int main(int argc, char** argv) {
   const eval::RunRecord run =
       eval::RunScenario(*world, **pipeline, simulator, args.quiet ? nullptr : Progress);
   const eval::EvalReport report = eval::Evaluate(*world, simulator.observations(), run);
-
-  for (const core::Status& s :
-       {core::WriteFileAtomically(out + "/report.json", eval::ReportJson(report)),
-        core::WriteFileAtomically(out + "/report.md", eval::ReportMarkdown(report)),
-        core::WriteFileAtomically(out + "/merges.md",
-                                  MergeTable(run, world->geometry().resolution_m())),
-        core::SaveMapServerMap(run.final_map, out + "/current_map.yaml"),
-        core::RenderGridToPng(run.final_map, out + "/current_map.png"),
-        eval::WriteOverlayPng(*world, simulator.observations(), run, out + "/map_overlay.png"),
-        eval::WriteDivergencePng(run, out + "/divergence.png"),
-        eval::WritePathsPng(*world, run, out + "/paths.png")}) {
-    if (!s.ok()) return Fail(s);
-  }
-  const eval::ChangeScores& c = report.changes;
-  Figure(name, "changed_f1", c.f1, "ratio");
-  Figure(name, "static_erased", double(c.static_cells_erased), "cells");
-  Figure(name, "actor_mapped", double(c.actor_cells_mapped), "cells");
-  Figure(name, "align_trans_median_cells", report.align_translation_cells.median, "cells");
-  Figure(name, "align_trans_p95_cells", report.align_translation_cells.p95, "cells");
-  Figure(name, "align_rot_p95_deg", report.align_rotation_deg.p95, "deg");
-  Figure(name, "detect_latency_median_s", report.detection_latency_s.median, "s");
-  Figure(name, "align_trans_max_cells", report.align_translation_cells.max, "cells");
-  Figure(name, "align_rot_median_deg", report.align_rotation_deg.median, "deg");
-  Figure(name, "align_rot_max_deg", report.align_rotation_deg.max, "deg");
-  Figure(name, "merges_accepted", report.merges_accepted, "merges");
-  Figure(name, "merges_rejected", report.merges_rejected, "merges");
-  if (!args.quiet)
-    std::fprintf(stderr, "fleetmap-eval: wrote %s/report.json and figures\n", out.c_str());
-  return 0;
+  return WriteResults(args, *world, simulator, run, report, name, out, {});
 }

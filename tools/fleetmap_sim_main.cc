@@ -27,6 +27,8 @@ options:
   --lcm-url URL    where to publish                [udpm://239.255.76.69:7669?ttl=0]
   --epoch S        add S seconds to every time stamp; default: the wall clock at start
   --no-truth       do not publish TRUTH_<ID>
+  --list-vehicles  print a line `ID X Y THETA` per vehicle (metres, radians: its pose at time
+                   0, an agent's --initial-pose), a line `map FILE` (the static map), and exit
   -h, --help       this text
 Stops cleanly on SIGINT/SIGTERM. Exit status: 0 done, 1 bad scenario or LCM failure, 2 usage.
 The multicast URL needs a route (loopback: ip route add 224.0.0.0/4 dev lo).
@@ -38,7 +40,7 @@ void OnSignal(int) { g_stop = 1; }
 struct Args {
   std::string scenario, map, url = lcmtypes::kDefaultSensorUrl;
   double speed = 1.0, duration = -1.0, epoch = -1.0;
-  bool truth = true;
+  bool truth = true, list_vehicles = false;
 };
 
 bool Parse(int argc, char** argv, Args& a) {
@@ -60,6 +62,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.epoch = std::stod(argv[++i]);
       else if (arg == "--no-truth")
         a.truth = false;
+      else if (arg == "--list-vehicles")
+        a.list_vehicles = true;
       else {
         std::fprintf(stderr, "fleetmap-sim: bad or incomplete argument '%s'\n", arg.c_str());
         return false;
@@ -94,6 +98,16 @@ int main(int argc, char** argv) {
   if (!world.ok()) {
     std::fprintf(stderr, "fleetmap-sim: %s\n", world.status().ToString().c_str());
     return 1;
+  }
+  if (args.list_vehicles) {
+    for (size_t i = 0; i < world->scenario().vehicles.size(); ++i) {
+      const core::Pose2 p = world->VehicleStateAt(i, 0.0).pose;
+      std::printf("%s %.4f %.4f %.6f\n", world->scenario().vehicles[i].id.c_str(), p.x_m, p.y_m,
+                  p.theta_rad);
+    }
+    std::printf("map %s\n",
+                args.map.empty() ? world->scenario().map_yaml.c_str() : args.map.c_str());
+    return 0;
   }
   lcm::LCM lcm(args.url);
   if (!lcm.good()) {

@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# Runs the whole fleet on this host over real LCM UDP multicast on loopback, as on vehicles:
+# fleetmap-sim publishes every vehicle's SCAN_/ODOM_ (sensor group), one fleetmap-agent per
+# vehicle sends temporary maps (uplink group), fleetmap-aggregator merges them and sends the
+# changes back (downlink group); lcm-logger records each group. Then fleetmap-eval scores the
+# recorded run against the simulator's truth, and `fleetmap-aggregator --replay` recomputes
+# the final map from the uplink log to show that it is the same, byte for byte.
+#
+#   scripts/fleet_run.sh [--scenario FILE] [--speed X] [--duration S] [--out DIR]
+#                        [--port P] [--bin DIR] [--name NAME]
+#     --scenario FILE  scenario YAML             [tools/sim/worlds/livinglab/fleet.yaml]
+#     --speed X        simulated seconds per wall-clock second                     [4]
+#     --duration S     simulated seconds                     [the scenario's duration]
+#     --out DIR        results folder (its logs/, maps/ and state/ are replaced)   [out]
+#     --port P         uplink UDP port; downlink P+1, sensor P+2                 [7667]
+#     --bin DIR        where the fleetmap programs are                   [build/bin]
+#     --name NAME      name of the figure lines                                 [demo]
+# Needs multicast on loopback: scripts/setup_multicast.sh (root) sets it up and says why.
+# Exit status: 0 when every step ran and the replay matched; 1 otherwise.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+scenario=$root/tools/sim/worlds/livinglab/fleet.yaml
+speed=4 duration="" out=out port=7667 bin=$root/build/bin name=demo
+while [ $# -gt 0 ]; do
+  case $1 in
+    --scenario) scenario=${2:?}; shift 2 ;;
+    --speed) speed=${2:?}; shift 2 ;;
+    --duration) duration=${2:?}; shift 2 ;;
+    --out) out=${2:?}; shift 2 ;;
+    --port) port=${2:?}; shift 2 ;;
+    --bin) bin=${2:?}; shift 2 ;;
+    --name) name=${2:?}; shift 2 ;;
+    -h | --help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) echo "fleet_run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+for p in fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval; do
+  [ -x "$bin/$p" ] || { echo "fleet_run.sh: $bin/$p is missing: build first" >&2; exit 1; }
+done
+command -v lcm-logger >/dev/null || { echo "fleet_run.sh: lcm-logger missing (apt-get install liblcm-bin)" >&2; exit 1; }
+
+# Multicast on loopback: LCM needs a route for 224.0.0.0/4 and a receive buffer large enough
+# for bursts of map tiles (scripts/setup_multicast.sh says more).
+"$root/scripts/setup_multicast.sh" >/dev/null || {
+  echo "fleet_run.sh: multicast on loopback is not set up; run scripts/setup_multicast.sh as root" >&2
+  exit 1
+}
+# ttl=0: nothing leaves this host. Separate groups per direction: no vehicle receives the
+# other vehicles' temporary maps, the aggregator not their scans.
+url() { echo "udpm://$1:$2?ttl=0&recv_buf_size=8388608"; }
+uplink=$(url 239.255.76.67 "$port")
+downlink=$(url 239.255.76.68 $((port + 1)))
+sensor=$(url 239.255.76.69 $((port + 2)))
+
+mkdir -p "$out"
+rm -rf "$out/logs" "$out/maps" "$out/state"
+mkdir -p "$out/logs" "$out/maps" "$out/state"
+static_map=$("$bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | sed -n 's/^map //p')
+mapfile -t vehicles < <("$bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | grep -v '^map ')
+
+declare -a loggers agents
+aggregator=""
+cleanup() {
+  for p in "${agents[@]}" $aggregator "${loggers[@]}"; do kill -TERM "$p" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+}
+trap cleanup EXIT
+trap 'echo "fleet_run.sh: interrupted" >&2; exit 130' INT TERM
+
+epoch=$(date +%s)
+for group in sensor uplink downlink; do
+  lcm-logger -q -f --lcm-url="${!group}" "$out/logs/$group.lcmlog" &
+  loggers+=($!)
+done
+"$bin/fleetmap-aggregator" --map "$static_map" --state-dir "$out/state/aggregator" \
+  --uplink-url "$uplink" --downlink-url "$downlink" --final-map "$out/maps/aggregator.yaml" \
+  >"$out/logs/aggregator.txt" 2>&1 &
+aggregator=$!
+vehicle_maps=()
+for line in "${vehicles[@]}"; do
+  read -r id x y theta <<<"$line"
+  "$bin/fleetmap-agent" --vehicle-id "$id" --map "$static_map" --initial-pose "$x,$y,$theta" \
+    --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
+    --state-dir "$out/state/$id" --final-map "$out/maps/$id.yaml" --quiet \
+    >"$out/logs/agent_$id.txt" 2>&1 &
+  agents+=($!)
+  vehicle_maps+=(--vehicle-map "$id=$out/maps/$id.yaml")
+done
+sleep 1  # every subscriber has joined its group before the first scan
+echo "fleet: aggregator and ${#vehicles[@]} agents up; simulating at ${speed}x (progress every 10 simulated s)"
+"$bin/fleetmap-sim" --scenario "$scenario" --speed "$speed" --epoch "$epoch" \
+  ${duration:+--duration "$duration"} --lcm-url "$sensor" 2>&1 | sed 's/^/  /'
+[ -n "$duration" ] || duration=$(sed -n 's/^duration_s: *//p' "$scenario")
+
+# Let the last temporary maps and changes travel, then stop the agents (each writes the map
+# it holds), then the aggregator (it writes the current map), then the loggers.
+sleep 3
+for p in "${agents[@]}"; do kill -INT "$p" 2>/dev/null || true; done
+for p in "${agents[@]}"; do wait "$p" || echo "fleet_run.sh: an agent exited with $?" >&2; done
+agents=()
+sleep 1
+kill -INT "$aggregator"
+wait "$aggregator" || echo "fleet_run.sh: the aggregator exited with $?" >&2
+aggregator=""
+sleep 0.5
+for p in "${loggers[@]}"; do kill -INT "$p" 2>/dev/null || true; done
+wait
+loggers=()
+live=$(grep '^aggregator: version' "$out/logs/aggregator.txt" | tail -1 || true)
+echo "fleet: stopped; $live"
+
+echo "fleet: scoring the recorded run"
+"$bin/fleetmap-eval" --scenario "$scenario" --lcm-log "$out/logs/sensor.lcmlog" \
+  --lcm-log "$out/logs/uplink.lcmlog" --lcm-log "$out/logs/downlink.lcmlog" \
+  --epoch "$epoch" --duration "$duration" "${vehicle_maps[@]}" --out "$out" --name "$name" \
+  --quiet >"$out/figures.txt"
+
+echo "fleet: replaying the uplink log into a fresh aggregator"
+"$bin/fleetmap-aggregator" --map "$static_map" --replay "$out/logs/uplink.lcmlog" \
+  --final-map "$out/maps/replay.yaml" --quiet >"$out/logs/replay.txt" 2>&1
+replayed=$(grep '^aggregator: version' "$out/logs/replay.txt" | tail -1 || true)
+if [ -n "$live" ] && [ "${live%% merged*}" = "${replayed%% merged*}" ]; then
+  echo "replay.same_map 1 bool" >>"$out/figures.txt"
+  echo "fleet: the replay gives the same map ($replayed)"
+else
+  echo "replay.same_map 0 bool" >>"$out/figures.txt"
+  echo "fleet: the replay DIFFERS: live '$live', replay '$replayed'" >&2
+  exit 1
+fi

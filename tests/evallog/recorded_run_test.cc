@@ -1,0 +1,204 @@
+#include "tools/evallog/recorded_run.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <lcm/lcm-cpp.hpp>
+
+#include "core/temp_map_tiles.h"
+#include "fleetmap/divergence_t.hpp"
+#include "fleetmap/merge_report_t.hpp"
+#include "lcmtypes/convert.h"
+#include "lcmtypes/transport_convert.h"
+#include "tests/sim/sim_test_util.h"
+#include "tools/sim/scenario.h"
+
+namespace fleetmap::evallog {
+namespace {
+
+constexpr const char* kScenario = R"(
+map: room.yaml
+duration_s: 5
+vehicles:
+  - {id: alpha, route: [[1, 3], [4, 3]]}
+  - {id: beta, route: [[1, 2], [4, 2]]}
+)";
+constexpr double kEpoch = 1000.0;  // what fleetmap-sim added to simulated time
+constexpr int64_t kWall0 = 1'700'000'000'000'000;
+
+// Writes a small recorded run: one temporary map of alpha, its merge, the delta that carries
+// it, and both vehicles' poses reporting the new version at different times.
+class RecordedRunTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    world_.emplace(
+        sim::World::Create(sim::ParseScenario(kScenario, "s.yaml").value(), sim::testing::Room())
+            .value());
+    path_ = (std::filesystem::temp_directory_path() /
+             ("recorded_run_test_" + std::to_string(::getpid()) + ".lcmlog"))
+                .string();
+  }
+  void TearDown() override { std::filesystem::remove(path_); }
+
+  template <typename Msg>
+  void Log(lcm::LogFile& log, double wall_s, const std::string& channel, const Msg& msg) {
+    std::vector<uint8_t> data(msg.getEncodedSize());
+    msg.encode(data.data(), 0, static_cast<int>(data.size()));
+    LogBytes(log, wall_s, channel, data);
+  }
+  void LogBytes(lcm::LogFile& log, double wall_s, const std::string& channel,
+                std::vector<uint8_t> data) {
+    lcm::LogEvent e;
+    e.eventnum = events_++;
+    e.timestamp = kWall0 + static_cast<int64_t>(wall_s * 1e6);
+    e.channel = channel;
+    e.datalen = static_cast<int32_t>(data.size());
+    e.data = data.data();
+    ASSERT_EQ(log.writeEvent(&e), 0);
+  }
+  fleetmap::pose_with_covariance_t Pose(const std::string& id, double t_s, int version) {
+    core::PoseEstimate p;
+    p.stamp_s = kEpoch + t_s;
+    p.pose_in_map = world_->VehicleStateAt(id == "alpha" ? 0 : 1, t_s).pose;
+    p.covariance = Eigen::Matrix3d::Identity() * 1e-4;
+    p.map_version = version;
+    return lcmtypes::ToMessage(p, id);
+  }
+
+  std::optional<sim::World> world_;
+  std::string path_;
+  int64_t events_ = 0;
+};
+
+TEST_F(RecordedRunTest, RebuildsMergesVersionsTracesAndLatency) {
+  const core::Pose2 truth = world_->VehicleStateAt(0, 1.0).pose;
+  const core::Pose2 anchor = truth * core::Pose2(0.10, -0.05, 0.01);  // localization error
+  core::TempMap map;
+  map.vehicle_id = "alpha";
+  map.sequence = 3;
+  map.anchor_in_map = anchor;
+  map.grid = core::OccupancyGrid(core::GridGeometry(0.05, 40, 30, core::Pose2(-1.0, -0.75, 0)));
+  map.start_s = kEpoch + 1.0;
+  map.end_s = kEpoch + 2.0;
+  // The aggregator's correction undoes the anchor's error exactly.
+  const core::Pose2 correction = truth * anchor.Inverse();
+
+  core::OccupancyGrid changed = world_->static_map();
+  changed.SetState({100, 60}, core::CellState::kOccupied);
+  const std::vector<core::EncodedTile> tiles =
+      core::EncodeChangedTiles(world_->static_map(), changed);
+  ASSERT_EQ(tiles.size(), 1u);
+  {
+    lcm::LogFile log(path_, "w");
+    ASSERT_TRUE(log.good());
+    for (const core::TempMapTile& t : core::SplitTempMap(map))
+      Log(log, 10.0, lcmtypes::TempMapChannel("alpha"), lcmtypes::ToMessage(t, 0));
+    fleetmap::divergence_t d{};
+    d.utime = lcmtypes::ToUtime(kEpoch + 1.5);
+    d.vehicle_id = "alpha";
+    d.d = 0.4;
+    d.state = fleetmap::divergence_t::BUILDING;
+    Log(log, 10.1, lcmtypes::DivergenceChannel("alpha"), d);
+    fleetmap::merge_report_t r{};
+    r.vehicle_id = "alpha";
+    r.tempmap_seq = 3;
+    r.accepted = true;
+    r.dx_m = correction.x_m;
+    r.dy_m = correction.y_m;
+    r.dtheta_rad = correction.theta_rad;
+    r.cells_added = 1;
+    r.new_version = 1;
+    Log(log, 10.2, lcmtypes::kMergeReportChannel, r);
+    core::DeltaTile delta;
+    delta.base_version = 0;
+    delta.index = 0;
+    delta.count = 1;
+    delta.tile = tiles[0].index;
+    delta.frame = tiles[0].frame;
+    Log(log, 10.3, lcmtypes::kMapDeltaChannel, lcmtypes::ToMessage(delta, 0));
+    Log(log, 10.4, lcmtypes::PoseChannel("alpha"), Pose("alpha", 2.5, 1));
+    Log(log, 10.5, lcmtypes::PoseChannel("beta"), Pose("beta", 2.5, 0));
+    Log(log, 10.9, lcmtypes::PoseChannel("beta"), Pose("beta", 3.0, 1));
+    LogBytes(log, 11.0, lcmtypes::kMergeReportChannel, {1, 2, 3});  // garbage
+  }
+  RecordedRunOptions options;
+  options.epoch_s = kEpoch;
+  auto run = ReadRecordedRun({path_}, *world_, options);
+  ASSERT_TRUE(run.ok()) << run.status().ToString();
+
+  ASSERT_EQ(run->run.merges.size(), 1u);
+  const eval::MergeRecord& m = run->run.merges[0];
+  EXPECT_TRUE(m.accepted);
+  EXPECT_EQ(m.tempmap_seq, 3);
+  EXPECT_NEAR(m.closed_s, 2.0, 1e-6);  // simulated time: the epoch is taken off
+  const core::Pose2 residual = core::Between(m.true_origin, m.placed_origin);
+  EXPECT_NEAR(residual.x_m, 0.0, 1e-6);
+  EXPECT_NEAR(residual.y_m, 0.0, 1e-6);
+  EXPECT_NEAR(residual.theta_rad, 0.0, 1e-9);
+  const core::Pose2 uncorrected =
+      core::Between(m.true_origin, anchor * map.grid.geometry().origin());
+  EXPECT_GT(std::hypot(uncorrected.x_m, uncorrected.y_m), 0.05);  // the test checks something
+
+  EXPECT_EQ(run->run.final_map.state({100, 60}), core::CellState::kOccupied);
+  EXPECT_EQ(run->fleet.final_version, 1);
+  // First tile at 10.0 s, the last vehicle (beta) reports version 1 at 10.9 s.
+  ASSERT_EQ(run->fleet.change_latency_s.size(), 1u);
+  EXPECT_NEAR(run->fleet.change_latency_s[0], 0.9, 1e-6);
+  EXPECT_EQ(run->fleet.changes_not_everywhere, 0);
+  EXPECT_EQ(run->fleet.malformed_messages, 1);
+  EXPECT_EQ(run->fleet.traffic.at(lcmtypes::PoseChannel("beta")).messages, 2);
+  ASSERT_EQ(run->run.divergence.size(), 1u);
+  EXPECT_NEAR(run->run.divergence[0].t_s, 1.5, 1e-6);
+  EXPECT_TRUE(run->run.divergence[0].building);
+  EXPECT_FALSE(run->run.poses.empty());
+
+  const auto pairs = FleetJsonPairs(run->fleet);
+  auto find = [&](const std::string& key) {
+    for (const auto& [k, v] : pairs)
+      if (k == key) return v;
+    return std::string("missing");
+  };
+  EXPECT_EQ(find("fleet.change_latency_s.median"), "0.9");
+  EXPECT_EQ(find("fleet.vehicles_holding_final_version"), "2");
+}
+
+TEST_F(RecordedRunTest, AVehicleThatNeverHoldsTheChangeIsCounted) {
+  {
+    lcm::LogFile log(path_, "w");
+    core::TempMap map;
+    map.vehicle_id = "beta";
+    map.sequence = 1;
+    map.anchor_in_map = world_->VehicleStateAt(1, 0.5).pose;
+    map.grid = core::OccupancyGrid(core::GridGeometry(0.05, 20, 20));
+    map.start_s = kEpoch + 0.5;
+    map.end_s = kEpoch + 1.0;
+    for (const core::TempMapTile& t : core::SplitTempMap(map))
+      Log(log, 5.0, lcmtypes::TempMapChannel("beta"), lcmtypes::ToMessage(t, 0));
+    fleetmap::merge_report_t r{};
+    r.vehicle_id = "beta";
+    r.tempmap_seq = 1;
+    r.accepted = true;
+    r.new_version = 1;
+    Log(log, 5.1, lcmtypes::kMergeReportChannel, r);
+    Log(log, 5.5, lcmtypes::PoseChannel("alpha"), Pose("alpha", 1.5, 1));
+    Log(log, 5.6, lcmtypes::PoseChannel("beta"), Pose("beta", 1.5, 0));
+  }
+  auto run = ReadRecordedRun({path_}, *world_, {kEpoch});
+  ASSERT_TRUE(run.ok()) << run.status().ToString();
+  EXPECT_TRUE(run->fleet.change_latency_s.empty());
+  EXPECT_EQ(run->fleet.changes_not_everywhere, 1);
+}
+
+TEST(RecordedRunErrorsTest, MissingOrEmptyLogsAreErrors) {
+  const sim::World world =
+      sim::World::Create(sim::ParseScenario(kScenario, "s.yaml").value(), sim::testing::Room())
+          .value();
+  EXPECT_FALSE(ReadRecordedRun({}, world, {}).ok());
+  auto missing = ReadRecordedRun({"/nonexistent/run.lcmlog"}, world, {});
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.status().ToString().find("/nonexistent/run.lcmlog"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fleetmap::evallog

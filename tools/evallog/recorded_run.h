@@ -1,0 +1,62 @@
+// A fleet run recorded by lcm-logger (one log per multicast group: sensor, uplink, downlink)
+// read back into the evaluation's RunRecord, so that the live system over the network is
+// scored exactly like the in-process pipelines, plus what only a network run has: bytes per
+// channel, and the latency from a temporary map closing on a vehicle to every vehicle holding
+// the change.
+//
+// Times: the simulator stamps messages with epoch + simulated time (fleetmap-sim --epoch), so
+// message stamps minus the epoch are simulated seconds; latencies and rates use the logger's
+// receive stamps (wall clock), since the simulator may run faster than real time.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tools/eval/run_record.h"
+#include "tools/sim/world.h"
+
+namespace fleetmap::evallog {
+
+struct RecordedRunOptions {
+  double epoch_s = 0.0;              // what fleetmap-sim added to simulated time, seconds
+  double divergence_period_s = 0.1;  // keep one DIVERGENCE_ sample per vehicle per period
+  double pose_period_s = 0.5;        // and one POSE_ sample
+};
+
+struct ChannelTraffic {
+  int64_t messages = 0;
+  int64_t bytes = 0;
+};
+
+struct FleetFigures {
+  double wall_span_s = 0.0;  // first to last logged message, wall-clock seconds
+  std::map<std::string, ChannelTraffic> traffic;  // by channel
+  // Per accepted merge: the map's first tile on the uplink -> the last vehicle reporting
+  // (POSE_ map_version) the version that merge made. Wall-clock seconds.
+  std::vector<double> change_latency_s;
+  int changes_not_everywhere = 0;  // accepted merges some vehicle never reported holding
+  std::map<std::string, int32_t> last_version_by_vehicle;  // from POSE_
+  int32_t final_version = -1;                              // from MAP_DELTA / MAP_KEYFRAME
+  int malformed_messages = 0;                              // logged but not decodable
+  int map_messages_refused = 0;                            // decodable map tiles refused
+};
+
+struct RecordedRun {
+  eval::RunRecord run;
+  FleetFigures fleet;
+};
+
+// Reads every log (any order; events are merged by receive time). The static map of `world`
+// is version 0; MAP_KEYFRAME and MAP_DELTA rebuild every later version as a vehicle would.
+core::Result<RecordedRun> ReadRecordedRun(const std::vector<std::string>& log_paths,
+                                          const sim::World& world,
+                                          const RecordedRunOptions& options);
+
+}  // namespace fleetmap::evallog
+
+namespace fleetmap::evallog {
+// The fleet figures as `"key": value` pairs for report.json (fleet.bytes_per_s.<CHANNEL>,
+// fleet.change_latency_s.*, ...), and as `name value unit` figure lines.
+std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigures& fleet);
+std::string FleetFigureLines(const FleetFigures& fleet);
+}  // namespace fleetmap::evallog
