@@ -17,6 +17,22 @@ bool MapReplica::NeedsKeyframe() const {
   return !deltas_.empty() && deltas_.begin()->first > version_;
 }
 
+Status MapReplica::Seed(OccupancyGrid grid, int32_t version, int32_t tile_size_cells) {
+  FLEETMAP_RETURN_IF_ERROR(grid.geometry().Validate().WithContext("seed map"));
+  TileOptions options;
+  options.tile_size_cells = tile_size_cells;
+  FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext("seed map"));
+  if (version < 0) return InvalidArgument("seed map: version must be >= 0");
+  map_ = std::move(grid);
+  version_ = version;
+  tile_size_cells_ = tile_size_cells;
+  keyframe_header_.reset();
+  keyframe_tiles_.clear();
+  deltas_.erase(deltas_.begin(), deltas_.lower_bound(version_));
+  ApplyReadyDeltas();
+  return OkStatus();
+}
+
 Result<bool> MapReplica::AddKeyframeTile(const KeyframeTile& tile) {
   FLEETMAP_RETURN_IF_ERROR(tile.geometry.Validate().WithContext("keyframe"));
   TileOptions options;

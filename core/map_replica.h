@@ -34,6 +34,11 @@ class MapReplica {
  public:
   explicit MapReplica(int max_buffered_versions = 16);
 
+  // Starts from a map the vehicle already holds (the static map file, which is version 0 at
+  // the aggregator), so that deltas from `version` on apply without waiting for a keyframe.
+  // `tile_size_cells` is the tiling the aggregator's deltas use (deltas carry no geometry).
+  // A keyframe of a newer version still replaces it.
+  Status Seed(OccupancyGrid grid, int32_t version, int32_t tile_size_cells = 64);
   // Returns true when this tile completed a keyframe that is now the map.
   Result<bool> AddKeyframeTile(const KeyframeTile& tile);
   // Returns true when this tile completed one or more versions that are now applied.

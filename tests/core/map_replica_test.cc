@@ -103,5 +103,27 @@ TEST(MapReplicaTest, CorruptTilesAreRefusedAndNothingIsHalfApplied) {
   EXPECT_TRUE(SameStates(replica.map(), v2));
 }
 
+TEST(MapReplicaTest, SeededFromAStaticMapAppliesDeltasFromItsVersion) {
+  const OccupancyGrid v0 = Hall(), v1 = WithPallet(v0, 20), v2 = WithPallet(v1, 100);
+  MapReplica replica;
+  EXPECT_FALSE(replica.Seed(v0, -1).ok());
+  EXPECT_FALSE(replica.Seed(v0, 0, 2).ok());  // not a usable tiling
+  EXPECT_FALSE(replica.has_map());
+  // A delta that arrived before the seed waits for it.
+  for (const DeltaTile& t : Delta(v1, v2, 1)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  ASSERT_TRUE(replica.Seed(v0, 0).ok());
+  EXPECT_EQ(replica.version(), 0);
+  EXPECT_TRUE(replica.NeedsKeyframe());  // version 1 is missing
+  for (const DeltaTile& t : Delta(v0, v1, 0)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.version(), 2);
+  EXPECT_FALSE(replica.NeedsKeyframe());
+  EXPECT_TRUE(SameStates(replica.map(), v2));
+  // A keyframe of a newer version replaces the seeded map; an older one is old news.
+  for (const auto& t : Keyframe(v0, 1)) EXPECT_FALSE(*replica.AddKeyframeTile(t));
+  for (const auto& t : Keyframe(v0, 5)) ASSERT_TRUE(replica.AddKeyframeTile(t).ok());
+  EXPECT_EQ(replica.version(), 5);
+  EXPECT_TRUE(SameStates(replica.map(), v0));
+}
+
 }  // namespace
 }  // namespace fleetmap::core
