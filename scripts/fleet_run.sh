@@ -15,12 +15,16 @@
 #     --port P         uplink UDP port; downlink P+1, sensor P+2                 [7667]
 #     --bin DIR        where the fleetmap programs are                   [build/bin]
 #     --name NAME      name of the figure lines                                 [demo]
+#     --loss P         drop a share P (0..1) of the uplink and downlink packets: the
+#                      fleet then runs in its own network namespace whose loopback drops
+#                      them (tc: HTB + a random classic-BPF filter; netem is not in this
+#                      kernel); the sensor group (on the vehicle) is spared          [0]
 # Needs multicast on loopback: scripts/setup_multicast.sh (root) sets it up and says why.
 # Exit status: 0 when every step ran and the replay matched; 1 otherwise.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 scenario=$root/tools/sim/worlds/livinglab/fleet.yaml
-speed=4 duration="" out=out port=7667 bin=$root/build/bin name=demo
+speed=4 duration="" out=out port=7667 bin=$root/build/bin name=demo loss=0
 while [ $# -gt 0 ]; do
   case $1 in
     --scenario) scenario=${2:?}; shift 2 ;;
@@ -30,7 +34,8 @@ while [ $# -gt 0 ]; do
     --port) port=${2:?}; shift 2 ;;
     --bin) bin=${2:?}; shift 2 ;;
     --name) name=${2:?}; shift 2 ;;
-    -h | --help) sed -n '2,20p' "$0"; exit 0 ;;
+    --loss) loss=${2:?}; shift 2 ;;
+    -h | --help) sed -n '2,24p' "$0"; exit 0 ;;
     *) echo "fleet_run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -45,6 +50,36 @@ command -v lcm-logger >/dev/null || { echo "fleet_run.sh: lcm-logger missing (ap
   echo "fleet_run.sh: multicast on loopback is not set up; run scripts/setup_multicast.sh as root" >&2
   exit 1
 }
+# With --loss, everything runs in a namespace of its own whose loopback loses packets.
+netns="" run=()
+lossy_namespace() {
+  netns=fleetmap-run-$$
+  ip netns add "$netns" || { echo "fleet_run.sh: --loss needs root (ip netns)" >&2; exit 1; }
+  run=(ip netns exec "$netns")
+  "${run[@]}" ip link set lo up
+  "${run[@]}" ip link set lo multicast on
+  "${run[@]}" ip route add 224.0.0.0/4 dev lo
+  # Packets the filter matches go to class 1:20, whose queue holds nothing: dropped. The
+  # classic-BPF program: load the UDP destination port (14-byte link header + 20-byte IP
+  # header + 2); the sensor port passes; otherwise match when a random 32-bit number is
+  # below P * 2^32.
+  local threshold
+  threshold=$(awk -v p="$loss" 'BEGIN { if (p < 0 || p > 1) exit 1; printf "%.0f", p * 4294967296 }') ||
+    { echo "fleet_run.sh: --loss takes a share between 0 and 1" >&2; exit 2; }
+  [ "$threshold" -lt 4294967296 ] || threshold=4294967295
+  "${run[@]}" tc qdisc add dev lo root handle 1: htb default 10 2>/dev/null
+  "${run[@]}" tc class add dev lo parent 1: classid 1:10 htb rate 10gbit 2>/dev/null
+  "${run[@]}" tc class add dev lo parent 1: classid 1:20 htb rate 10gbit 2>/dev/null
+  "${run[@]}" tc qdisc add dev lo parent 1:20 handle 20: pfifo limit 0
+  "${run[@]}" tc filter add dev lo parent 1: prio 1 bpf bytecode \
+    "6,40 0 0 36,21 3 0 $((port + 2)),32 0 0 4294963256,53 1 0 $threshold,6 0 0 4294967295,6 0 0 0" \
+    classid 1:20
+}
+dropped_packets() {
+  "${run[@]}" tc -s qdisc show dev lo | awk '/^qdisc pfifo 20:/ { getline; for (i = 1; i <= NF; ++i) if ($i == "(dropped") print $(i + 1) }' | tr -d ,
+}
+[ "$loss" = 0 ] || lossy_namespace
+
 # ttl=0: nothing leaves this host. Separate groups per direction: no vehicle receives the
 # other vehicles' temporary maps, the aggregator not their scans.
 url() { echo "udpm://$1:$2?ttl=0&recv_buf_size=8388608"; }
@@ -63,23 +98,24 @@ aggregator=""
 cleanup() {
   for p in "${agents[@]}" $aggregator "${loggers[@]}"; do kill -TERM "$p" 2>/dev/null || true; done
   wait 2>/dev/null || true
+  [ -z "$netns" ] || ip netns del "$netns" 2>/dev/null || true
 }
 trap cleanup EXIT
 trap 'echo "fleet_run.sh: interrupted" >&2; exit 130' INT TERM
 
 epoch=$(date +%s)
 for group in sensor uplink downlink; do
-  lcm-logger -q -f --lcm-url="${!group}" "$out/logs/$group.lcmlog" &
+  "${run[@]}" lcm-logger -q -f --lcm-url="${!group}" "$out/logs/$group.lcmlog" &
   loggers+=($!)
 done
-"$bin/fleetmap-aggregator" --map "$static_map" --state-dir "$out/state/aggregator" \
+"${run[@]}" "$bin/fleetmap-aggregator" --map "$static_map" --state-dir "$out/state/aggregator" \
   --uplink-url "$uplink" --downlink-url "$downlink" --final-map "$out/maps/aggregator.yaml" \
   >"$out/logs/aggregator.txt" 2>&1 &
 aggregator=$!
 vehicle_maps=()
 for line in "${vehicles[@]}"; do
   read -r id x y theta <<<"$line"
-  "$bin/fleetmap-agent" --vehicle-id "$id" --map "$static_map" --initial-pose "$x,$y,$theta" \
+  "${run[@]}" "$bin/fleetmap-agent" --vehicle-id "$id" --map "$static_map" --initial-pose "$x,$y,$theta" \
     --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
     --state-dir "$out/state/$id" --final-map "$out/maps/$id.yaml" --quiet \
     >"$out/logs/agent_$id.txt" 2>&1 &
@@ -88,7 +124,7 @@ for line in "${vehicles[@]}"; do
 done
 sleep 1  # every subscriber has joined its group before the first scan
 echo "fleet: aggregator and ${#vehicles[@]} agents up; simulating at ${speed}x (progress every 10 simulated s)"
-"$bin/fleetmap-sim" --scenario "$scenario" --speed "$speed" --epoch "$epoch" \
+"${run[@]}" "$bin/fleetmap-sim" --scenario "$scenario" --speed "$speed" --epoch "$epoch" \
   ${duration:+--duration "$duration"} --lcm-url "$sensor" 2>&1 | sed 's/^/  /'
 [ -n "$duration" ] || duration=$(sed -n 's/^duration_s: *//p' "$scenario")
 
@@ -108,12 +144,14 @@ wait
 loggers=()
 live=$(grep '^aggregator: version' "$out/logs/aggregator.txt" | tail -1 || true)
 echo "fleet: stopped; $live"
+[ -z "$netns" ] || echo "loss.dropped_packets $(dropped_packets) packets" | tee -a "$out/logs/loss.txt"
 
 echo "fleet: scoring the recorded run"
 "$bin/fleetmap-eval" --scenario "$scenario" --lcm-log "$out/logs/sensor.lcmlog" \
   --lcm-log "$out/logs/uplink.lcmlog" --lcm-log "$out/logs/downlink.lcmlog" \
   --epoch "$epoch" --duration "$duration" "${vehicle_maps[@]}" --out "$out" --name "$name" \
   --quiet >"$out/figures.txt"
+[ -z "$netns" ] || cat "$out/logs/loss.txt" >>"$out/figures.txt"
 
 echo "fleet: replaying the uplink log into a fresh aggregator"
 "$bin/fleetmap-aggregator" --map "$static_map" --replay "$out/logs/uplink.lcmlog" \

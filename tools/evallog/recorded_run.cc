@@ -282,6 +282,11 @@ std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigur
   const double span = std::max(f.wall_span_s, 1e-9);
   for (const auto& [channel, t] : f.traffic)
     kv.emplace_back("fleet.bytes_per_s." + channel, Num(t.bytes / span));
+  for (const auto& [channel, t] : f.traffic) {
+    kv.emplace_back("fleet.messages_per_s." + channel, Num(t.messages / span));
+    kv.emplace_back("fleet.mean_message_bytes." + channel,
+                    Num(t.messages > 0 ? double(t.bytes) / t.messages : 0.0));
+  }
   kv.emplace_back("fleet.wall_span_s", Num(f.wall_span_s));
   kv.emplace_back("fleet.change_latency_s.count", std::to_string(f.change_latency_s.size()));
   kv.emplace_back("fleet.change_latency_s.median", Num(Percentile(f.change_latency_s, 0.5)));

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The fleet's integration test (ctest fleet_*): the simulator, three fleetmap-agent processes
+# and fleetmap-aggregator over real LCM UDP multicast on loopback (scripts/fleet_run.sh), on
+# tools/sim/worlds/livinglab/fleet_short.yaml (a pallet added, one added and taken away, a
+# person walking). Checks, from fleetmap-eval's report of the recorded run, that the change
+# detection is right (F1 of changed cells >= MIN_F1, no static cell erased), that every
+# vehicle ends holding exactly the fleet's final map, and that replaying the uplink log gives
+# the same map byte for byte.
+#   tests/fleet/fleet_test.sh BIN_DIR OUT_DIR PORT [--loss P] [--min-f1 F]
+# Exits 77 (ctest: skipped) with the reason when multicast on loopback cannot be set up.
+set -uo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+bin=${1:?BIN_DIR}; out=${2:?OUT_DIR}; port=${3:?PORT}; shift 3
+loss=0 min_f1=0.95
+while [ $# -gt 0 ]; do
+  case $1 in
+    --loss) loss=$2; shift 2 ;;
+    --min-f1) min_f1=$2; shift 2 ;;
+    *) echo "fleet_test.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+if ! "$root/scripts/setup_multicast.sh" >/dev/null 2>&1; then
+  echo "SKIP: multicast on loopback cannot be set up here (scripts/setup_multicast.sh needs root)"
+  exit 77
+fi
+if [ "$loss" != 0 ] && ! ip netns add fleetmap-probe-$$ 2>/dev/null; then
+  echo "SKIP: network namespaces are not available (needed to drop packets)"
+  exit 77
+fi
+ip netns del fleetmap-probe-$$ 2>/dev/null || true
+
+rm -rf "$out"
+"$root/scripts/fleet_run.sh" --scenario "$root/tools/sim/worlds/livinglab/fleet_short.yaml" \
+  --speed 4 --out "$out" --port "$port" --bin "$bin" --name fleet --loss "$loss"
+rc=$?
+[ -f "$out/figures.txt" ] || { echo "FAIL: the run wrote no figures (fleet_run.sh exit $rc)"; exit 1; }
+cat "$out/figures.txt"
+fail=0
+figure() { awk -v k="$1" '$1 == k { print $2 }' "$out/figures.txt"; }
+check() {  # NAME OP VALUE
+  local v
+  v=$(figure "$1")
+  if [ -z "$v" ] || ! awk -v a="$v" -v b="$3" "BEGIN { exit !(a $2 b) }"; then
+    echo "FAIL: $1 is '${v:-missing}', expected $2 $3"
+    fail=1
+  fi
+}
+check eval.fleet.changed_f1 '>=' "$min_f1"
+check eval.fleet.static_erased '==' 0
+check fleet.vehicle_maps_equal '==' 3
+check fleet.changes_not_everywhere '==' 0
+check replay.same_map '==' 1
+[ "$rc" = 0 ] || { echo "FAIL: fleet_run.sh exited with $rc"; fail=1; }
+for f in "$out"/logs/aggregator.txt "$out"/logs/agent_*.txt; do
+  if grep -qiE 'sanitizer|runtime error|Assertion|terminate called' "$f"; then
+    echo "FAIL: $f reports a crash or sanitizer error"; fail=1
+  fi
+done
+[ "$fail" = 0 ] && echo "PASS"
+exit "$fail"
