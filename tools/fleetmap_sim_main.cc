@@ -1,11 +1,14 @@
 // fleetmap-sim: runs a scenario and publishes every vehicle's scans and odometry over LCM,
 // in real time or at a speed factor, so that agents run exactly as on vehicles. See --help.
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <thread>
+#include <variant>
+#include <vector>
 
 #include "lcmtypes/convert.h"
 #include "tools/simlcm/sim_publisher.h"
@@ -27,6 +30,8 @@ options:
   --lcm-url URL    where to publish                [udpm://239.255.76.69:7669?ttl=0]
   --epoch S        add S seconds to every time stamp; default: the wall clock at start
   --no-truth       do not publish TRUTH_<ID>
+  --vehicles A,B   publish only these vehicles (e.g. one simulator per vehicle host in a LAN
+                   experiment; the world, with every vehicle in it, is the same)   [all]
   --list-vehicles  print a line `ID X Y THETA` per vehicle (metres, radians: its pose at time
                    0, an agent's --initial-pose), a line `map FILE` (the static map), and exit
   -h, --help       this text
@@ -41,6 +46,7 @@ struct Args {
   std::string scenario, map, url = lcmtypes::kDefaultSensorUrl;
   double speed = 1.0, duration = -1.0, epoch = -1.0;
   bool truth = true, list_vehicles = false;
+  std::string vehicles;  // comma-separated ids; empty: all
 };
 
 bool Parse(int argc, char** argv, Args& a) {
@@ -62,6 +68,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.epoch = std::stod(argv[++i]);
       else if (arg == "--no-truth")
         a.truth = false;
+      else if (arg == "--vehicles" && has_value)
+        a.vehicles = argv[++i];
       else if (arg == "--list-vehicles")
         a.list_vehicles = true;
       else {
@@ -119,6 +127,22 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  // Which vehicles to publish.
+  std::vector<bool> publish(world->scenario().vehicles.size(), args.vehicles.empty());
+  for (size_t start = 0; !args.vehicles.empty() && start <= args.vehicles.size();) {
+    const size_t comma = std::min(args.vehicles.find(',', start), args.vehicles.size());
+    const std::string id = args.vehicles.substr(start, comma - start);
+    bool found = false;
+    for (size_t v = 0; v < publish.size(); ++v) {
+      if (world->scenario().vehicles[v].id == id) publish[v] = found = true;
+    }
+    if (!found) {
+      std::fprintf(stderr, "fleetmap-sim: --vehicles: the scenario has no vehicle '%s'\n",
+                   id.c_str());
+      return 2;
+    }
+    start = comma + 1;
+  }
   const double duration = args.duration >= 0 ? args.duration : world->scenario().duration_s;
   simlcm::SimPublisherOptions options;
   options.epoch_s = args.epoch >= 0 ? args.epoch : WallNow();
@@ -139,7 +163,8 @@ int main(int argc, char** argv) {
                                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                         std::chrono::duration<double>(t / args.speed)));
     }
-    publisher.Publish(*event);
+    if (publish[std::visit([](const auto& e) { return e.vehicle; }, *event)])
+      publisher.Publish(*event);
     if (t >= next_progress_s) {
       std::fprintf(stderr, "  %.0f s simulated, %lld messages, %.1f MB\n", t,
                    (long long)publisher.counters().messages, publisher.counters().bytes / 1e6);
