@@ -6,6 +6,7 @@ core::Status AgentPipelineOptions::Validate() const {
   if (vehicle_id.empty()) return core::InvalidArgument("agent: vehicle_id is empty");
   if (!scanner_in_base.IsFinite())
     return core::InvalidArgument("agent: scanner_in_base is not finite");
+  if (first_sequence < 1) return core::InvalidArgument("agent: first_sequence must be >= 1");
   FLEETMAP_RETURN_IF_ERROR(localizer.Validate().WithContext("agent.localizer"));
   FLEETMAP_RETURN_IF_ERROR(divergence.Validate().WithContext("agent.divergence"));
   return builder.Validate().WithContext("agent.builder");
@@ -15,7 +16,8 @@ AgentPipeline::AgentPipeline(const AgentPipelineOptions& options)
     : options_(options),
       localizer_(options.localizer),
       divergence_(options.divergence),
-      builder_(options.builder) {}
+      builder_(options.builder),
+      next_sequence_(options.first_sequence) {}
 
 core::Status AgentPipeline::SetMap(const core::OccupancyGrid& map, int32_t version) {
   // Temporary maps are built at the current map's resolution, so that they merge cell for cell.

@@ -20,6 +20,9 @@ struct AgentPipelineOptions {
   LocalizerOptions localizer;
   DivergenceOptions divergence;
   TempMapBuilderOptions builder;  // the map's resolution is the current map's
+  // Sequence number of the first temporary map, >= 1. The agent process continues its
+  // numbering across restarts, so that the aggregator never takes a new map for a duplicate.
+  int32_t first_sequence = 1;
   core::Status Validate() const;
 };
 

@@ -1,0 +1,139 @@
+// The agent's configuration file and command line.
+#include "vehicle_agent/node/agent_config.h"
+
+#include <gtest/gtest.h>
+
+#include "vehicle_agent/node/agent_flags.h"
+
+namespace fleetmap::vehicle_agent::node {
+namespace {
+
+const std::string kExample =
+    std::string(FLEETMAP_SOURCE_DIR) + "/vehicle_agent/node/fleetmap_agent.example.yaml";
+
+TEST(AgentConfigTest, TheShippedExampleLoadsWithEveryValue) {
+  auto c = LoadAgentConfig(kExample);
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_TRUE(c->Validate().ok()) << c->Validate().ToString();
+  EXPECT_EQ(c->node.pipeline.vehicle_id, "cts1");
+  EXPECT_EQ(c->map_yaml,
+            std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/livinglab.yaml");
+  EXPECT_EQ(c->node.outbox.state_dir, "/var/lib/fleetmap/cts1");
+  EXPECT_TRUE(c->final_map_yaml.empty());
+  EXPECT_DOUBLE_EQ(c->node.pipeline.scanner_in_base.x_m, 0.3);
+  EXPECT_EQ(c->node.initial_pose, InitialPoseSource::kGiven);
+  EXPECT_DOUBLE_EQ(c->node.pipeline.localizer.initial_pose_in_map.x_m, 5.0);
+  EXPECT_DOUBLE_EQ(c->node.pipeline.localizer.initial_sigma_theta_rad, 0.26);
+  EXPECT_EQ(c->scan_source, ScanSource::kSick);
+  EXPECT_EQ(c->odom_source, OdomSource::kCan);
+  EXPECT_FALSE(c->node.scans_from_lcm);
+  EXPECT_FALSE(c->node.odometry_from_lcm);
+  EXPECT_EQ(c->sick.client.protocol, drivers::sick::ColaProtocol::kColaB);
+  EXPECT_DOUBLE_EQ(c->sick.conversion.range_max_m, 30.0);
+  EXPECT_DOUBLE_EQ(c->can.odometry.gear_ratio, 20.0);
+  EXPECT_TRUE(c->can.odometry.right.inverted);
+  EXPECT_EQ(c->can.socket.interface, "can0");
+  EXPECT_EQ(c->node.pipeline.localizer.external_pose_mode, ExternalPoseMode::kFuse);
+  EXPECT_EQ(c->urls.uplink, "udpm://239.255.76.67:7667?ttl=1&recv_buf_size=8388608");
+  EXPECT_EQ(c->node.pose_link, Link::kUplink);
+}
+
+TEST(AgentConfigTest, DefaultsWithOnlyAVehicleId) {
+  auto c = ParseAgentConfig("vehicle_id: v7\n", "/etc/fleetmap/agent.yaml");
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_TRUE(c->Validate().ok());
+  EXPECT_EQ(c->urls.sensor, "udpm://239.255.76.69:7669?ttl=0");
+  EXPECT_EQ(c->scan_source, ScanSource::kLcm);
+  EXPECT_TRUE(c->node.scans_from_lcm && c->node.odometry_from_lcm);
+  EXPECT_EQ(c->node.initial_pose, InitialPoseSource::kGlobal);  // nothing said where
+  EXPECT_TRUE(c->map_yaml.empty());
+  EXPECT_DOUBLE_EQ(c->node.status_period_s, 1.0);
+  auto external = ParseAgentConfig("vehicle_id: v7\ninputs: {external_pose: true}\n", "a.yaml");
+  ASSERT_TRUE(external.ok());
+  EXPECT_EQ(external->node.initial_pose, InitialPoseSource::kFirstExternal);
+}
+
+TEST(AgentConfigTest, MistakesAreErrorsThatNameTheKeyAndLine) {
+  struct Case {
+    const char* yaml;
+    const char* says;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"vehicle_id: v1\nlocalisation: {max_beams: 3}\n",
+            "a.yaml:2: localisation: unknown key"},
+           {"vehicle_id: v1\ndivergence:\n  start_abov: 0.2\n",
+            "divergence.start_abov: unknown key"},
+           {"vehicle_id: v1\ninputs: {scan_source: usb}\n", "inputs.scan_source: must be one of"},
+           {"vehicle_id: v1\nscanner_mount: [0.3, 0]\n", "scanner_mount: must have 3 numbers"},
+           {"vehicle_id: v1\ninitial_pose: somewhere\n", "initial_pose: must be global"},
+           {"vehicle_id: v1\ninitial_pose: {x_m: 1, y_m: 2}\n", "initial_pose.theta_rad: missing"},
+           {"vehicle_id: v1\ninputs: {sick: {protocol: cola-c}}\n", "unknown CoLa protocol"},
+           {"vehicle_id: v1\nrates: {status_period_s: fast}\n",
+            "rates.status_period_s: has the wrong type"},
+           {"vehicle_id: v1\ninputs: {can: {mapping: {wheel_radius_m: -1}}}\n", "wheel_radius_m"},
+           {"vehicle_id: [v1\n", "a.yaml:"},
+       }) {
+    auto parsed = ParseAgentConfig(c.yaml, "a.yaml");
+    ASSERT_FALSE(parsed.ok()) << c.yaml;
+    EXPECT_NE(parsed.status().message().find(c.says), std::string::npos)
+        << parsed.status().ToString();
+  }
+  // Values that parse but do not fit are refused by Validate with the key's name.
+  for (const char* yaml : {"vehicle_id: v1\noutbox: {first_resend_s: 0}\n",
+                           "vehicle_id: v1\nrates: {max_queued_scans: 0}\n",
+                           "vehicle_id: v1\nrates: {loop_wait_s: 2}\n",
+                           "vehicle_id: v1\ninputs: {scan_source: sick, sick: {port: 0}}\n",
+                           "vehicle_id: v1\ninitial_pose: external\n", "vehicle_id: 'v.1'\n"}) {
+    auto parsed = ParseAgentConfig(yaml, "a.yaml");
+    ASSERT_TRUE(parsed.ok()) << yaml << parsed.status().ToString();
+    EXPECT_FALSE(parsed->Validate().ok()) << yaml;
+  }
+}
+
+TEST(AgentFlagsTest, FlagsOverrideTheFileAndAreChecked) {
+  auto c = ParseAgentCommandLine({"--config",       kExample,        "--vehicle-id",
+                                  "cts2",           "--map",         "/maps/hall.yaml",
+                                  "--initial-pose", "1.5,-2,0.25",   "--scanner-mount=0.35,0,0",
+                                  "--state-dir",    "/tmp/st",       "--sensor-url",
+                                  "memq://",        "--uplink-url",  "memq://",
+                                  "--downlink-url", "memq://",       "--final-map",
+                                  "out.yaml",       "--duration",    "12.5",
+                                  "--sick",         "10.0.0.7:2111", "--quiet"});
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  const AgentConfig& a = c->config;
+  EXPECT_EQ(a.node.pipeline.vehicle_id, "cts2");
+  EXPECT_EQ(a.map_yaml, "/maps/hall.yaml");
+  EXPECT_DOUBLE_EQ(a.node.pipeline.localizer.initial_pose_in_map.y_m, -2.0);
+  EXPECT_DOUBLE_EQ(a.node.pipeline.localizer.initial_pose_in_map.theta_rad, 0.25);
+  EXPECT_DOUBLE_EQ(a.node.pipeline.scanner_in_base.x_m, 0.35);
+  EXPECT_EQ(a.node.outbox.state_dir, "/tmp/st");
+  EXPECT_EQ(a.urls.downlink, "memq://");
+  EXPECT_EQ(a.final_map_yaml, "out.yaml");
+  EXPECT_DOUBLE_EQ(a.duration_s, 12.5);
+  EXPECT_EQ(a.sick.client.host, "10.0.0.7");
+  EXPECT_EQ(a.sick.client.port, 2111);
+  EXPECT_TRUE(a.quiet);
+  // Without a file: what run_demo passes is enough.
+  auto demo = ParseAgentCommandLine({"--vehicle-id", "v1", "--initial-pose", "5,4,0"});
+  ASSERT_TRUE(demo.ok()) << demo.status().ToString();
+  EXPECT_EQ(demo->config.node.initial_pose, InitialPoseSource::kGiven);
+  EXPECT_TRUE(demo->config.node.scans_from_lcm);
+  EXPECT_TRUE(ParseAgentCommandLine({"--help"})->help);
+  EXPECT_TRUE(ParseAgentCommandLine({"--version"})->version);
+  for (const std::vector<std::string>& bad :
+       std::vector<std::vector<std::string>>{{"--vehicle-id"},
+                                             {"--vehicle-id", "v1", "--frobnicate"},
+                                             {"--vehicle-id", "v1", "--initial-pose", "1,2"},
+                                             {"--vehicle-id", "v1", "--initial-pose", "1,2,x"},
+                                             {"--vehicle-id", "v1", "--initial-pose", "1,2,3,4"},
+                                             {"--vehicle-id", "v1", "--duration", "-1"},
+                                             {"--vehicle-id", "v1", "--sick", "host"},
+                                             {"--vehicle-id", "v1", "--sick", "host:99999"},
+                                             {"--config", "/nonexistent.yaml"},
+                                             {"--map", "m.yaml"}}) {
+    EXPECT_FALSE(ParseAgentCommandLine(bad).ok()) << bad.back();
+  }
+}
+
+}  // namespace
+}  // namespace fleetmap::vehicle_agent::node

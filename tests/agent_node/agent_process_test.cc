@@ -1,0 +1,201 @@
+// The fleetmap-agent binary over real LCM UDP multicast on loopback: simulated SCAN_/ODOM_
+// published on its sensor link, POSE_ and STATUS_ read on its uplink, stopped with SIGINT.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <sstream>
+#include <thread>
+
+#include "core/map_io.h"
+#include "tests/agent_node/node_test_util.h"
+#include "tests/agent_node/temp_dir.h"
+#include "tests/support/multicast.h"
+
+extern char** environ;
+
+namespace fleetmap::vehicle_agent::node {
+namespace {
+
+// Group and ports of this test only (other tests use other ones).
+std::string Url(int group, int port) {
+  return "udpm://239.255.77." + std::to_string(group) + ":" + std::to_string(port) +
+         "?ttl=0&recv_buf_size=8388608";
+}
+
+pid_t Spawn(const std::vector<std::string>& args, const std::string& out, const std::string& err) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int r = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return r == 0 ? pid : -1;
+}
+
+// Exit code, or -1 if it did not exit within the (generous) deadline.
+int WaitExit(pid_t pid, double limit_s) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
+  while (std::chrono::steady_clock::now() < end) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  return -1;
+}
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Uplink {
+ public:
+  void OnPose(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    auto m = lcmtypes::Decode<fleetmap::pose_with_covariance_t>(rbuf->data, rbuf->data_size);
+    ASSERT_TRUE(m.ok());
+    poses.push_back(*m);
+  }
+  void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    auto m = lcmtypes::Decode<fleetmap::status_t>(rbuf->data, rbuf->data_size);
+    ASSERT_TRUE(m.ok());
+    status.push_back(*m);
+  }
+  std::vector<fleetmap::pose_with_covariance_t> poses;
+  std::vector<fleetmap::status_t> status;
+};
+
+TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
+  const std::string sensor = Url(41, 7941), uplink = Url(42, 7942), downlink = Url(43, 7943);
+  FLEETMAP_REQUIRE_MULTICAST(sensor);
+  testing::TempDir dir;
+  const sim::World world = testing::RoomWorld();
+  ASSERT_TRUE(core::SaveMapServerMap(world.static_map(), dir / "room.yaml").ok());
+  lcm::LCM sensor_lcm(sensor), uplink_lcm(uplink);
+  ASSERT_TRUE(sensor_lcm.good() && uplink_lcm.good());
+  Uplink received;
+  uplink_lcm.subscribe("POSE_v1", &Uplink::OnPose, &received);
+  uplink_lcm.subscribe("STATUS_agent_v1", &Uplink::OnStatus, &received);
+
+  const core::Pose2 start = world.VehicleStateAt(0, 0.0).pose;
+  const std::string pose = std::to_string(start.x_m) + "," + std::to_string(start.y_m) + "," +
+                           std::to_string(start.theta_rad);
+  const pid_t agent = Spawn({FLEETMAP_AGENT_BINARY,
+                             "--vehicle-id",
+                             "v1",
+                             "--map",
+                             dir / "room.yaml",
+                             "--initial-pose",
+                             pose,
+                             "--scanner-mount",
+                             "0.3,0,0",
+                             "--sensor-url",
+                             sensor,
+                             "--uplink-url",
+                             uplink,
+                             "--downlink-url",
+                             downlink,
+                             "--state-dir",
+                             dir / "state",
+                             "--final-map",
+                             dir / "final.yaml",
+                             "--quiet"},
+                            dir / "out.txt", dir / "err.txt");
+  ASSERT_GT(agent, 0);
+  // The agent is up once its first heartbeat arrives (deadline only against a hang).
+  for (int i = 0; i < 200 && received.status.empty(); ++i) uplink_lcm.handleTimeout(50);
+  ASSERT_FALSE(received.status.empty()) << ReadAll(dir / "err.txt");
+
+  // 16 simulated seconds at 4x.
+  const double epoch = 1.7e9;
+  std::map<int64_t, core::Pose2> truth;
+  sim::Simulator simulator(&world);
+  const auto wall_start = std::chrono::steady_clock::now();
+  int32_t seq = 0;
+  while (auto e = simulator.Next()) {
+    const double t = sim::EventTime(*e);
+    std::this_thread::sleep_until(wall_start + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                                   std::chrono::duration<double>(t / 4.0)));
+    if (const auto* o = std::get_if<sim::OdometryEvent>(&*e)) {
+      const core::OdometrySample odom{o->stamp_s + epoch, o->odom_pose, o->v_mps, o->omega_radps};
+      const auto m = lcmtypes::ToMessage(odom, "v1");
+      sensor_lcm.publish("ODOM_v1", &m);
+    } else if (const auto* s = std::get_if<sim::ScanEvent>(&*e)) {
+      core::LaserScan scan = s->scan;
+      scan.stamp_s += epoch;
+      truth[lcmtypes::ToUtime(scan.stamp_s)] = s->true_base_pose;
+      const auto m = lcmtypes::ToMessage(scan, "v1", seq++);
+      sensor_lcm.publish("SCAN_v1", &m);
+    }
+    while (uplink_lcm.handleTimeout(0) > 0) {
+    }
+  }
+  for (int i = 0; i < 10; ++i) uplink_lcm.handleTimeout(50);  // the last poses
+  kill(agent, SIGINT);
+  EXPECT_EQ(WaitExit(agent, 20.0), 0) << ReadAll(dir / "err.txt");
+
+  // Poses of (nearly) every scan, on version 0, where the vehicle was.
+  ASSERT_GT(received.poses.size(), truth.size() * 9 / 10);
+  int close = 0;
+  for (const auto& p : received.poses) {
+    EXPECT_EQ(p.vehicle_id, "v1");
+    EXPECT_EQ(p.map_version, 0);
+    ASSERT_TRUE(truth.count(p.utime));
+    const core::Pose2& t = truth.at(p.utime);
+    close += std::hypot(p.pose.x_m - t.x_m, p.pose.y_m - t.y_m) < 0.05;
+  }
+  EXPECT_GT(close, static_cast<int>(received.poses.size()) * 9 / 10);
+  const fleetmap::status_t& last = received.status.back();
+  EXPECT_EQ(last.process, "agent_v1");
+  EXPECT_EQ(last.state, "running");
+  EXPECT_EQ(last.map_version, 0);
+  EXPECT_GE(received.status.size(), 4u);  // about one per second
+  int64_t scans = -1;
+  for (int i = 0; i < last.num_counters; ++i)
+    if (last.counter_names[i] == "scans") scans = last.counter_values[i];
+  EXPECT_GT(scans, static_cast<int64_t>(truth.size()) * 9 / 10);
+  // The final line and the final map.
+  const std::string out = ReadAll(dir / "out.txt");
+  EXPECT_EQ(out.rfind("agent v1: scans ", 0), 0u) << out;
+  EXPECT_NE(out.find(" map_version 0 tempmaps 0"), std::string::npos) << out;
+  auto final_map = core::LoadMapServerMap(dir / "final.yaml");
+  ASSERT_TRUE(final_map.ok()) << final_map.status().ToString();
+  EXPECT_EQ(final_map->grid.geometry().width(), world.static_map().geometry().width());
+}
+
+TEST(AgentProcessTest, BadFlagsAndAMissingMapFailWithAClearMessage) {
+  testing::TempDir dir;
+  EXPECT_EQ(
+      WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v 1"}, dir / "o", dir / "e"), 20), 2);
+  EXPECT_NE(ReadAll(dir / "e").find("vehicle_id"), std::string::npos);
+  EXPECT_EQ(WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--initial-pose", "1,2"},
+                           dir / "o", dir / "e"),
+                     20),
+            2);
+  EXPECT_NE(ReadAll(dir / "e").find("X,Y,THETA"), std::string::npos);
+  EXPECT_EQ(
+      WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--map", dir / "none.yaml"},
+                     dir / "o", dir / "e"),
+               20),
+      1);
+  EXPECT_NE(ReadAll(dir / "e").find("none.yaml"), std::string::npos);
+  EXPECT_EQ(WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--help"}, dir / "o", dir / "e"), 20), 0);
+  EXPECT_NE(ReadAll(dir / "o").find("--initial-pose"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fleetmap::vehicle_agent::node

@@ -1,0 +1,147 @@
+// End to end through the real SICK driver: the scanner emulator serves the simulated room's
+// scans over TCP on loopback, the agent's SickScanInput (drivers/sick's client) receives them,
+// the node localizes with the simulator's odometry; the scanner is cut and restarted, and the
+// agent reconnects and carries on.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "tests/agent_node/node_test_util.h"
+#include "tools/sickemu/scan_source.h"
+#include "tools/sickemu/scanner_emulator.h"
+#include "vehicle_agent/node/sick_scan_input.h"
+
+namespace fleetmap::vehicle_agent::node {
+namespace {
+
+using testing::MemoryPublisher;
+
+// The emulator's scanner, `skip` scans into the run (a restarted scanner goes on in time).
+std::unique_ptr<sickemu::ScannerEmulator> StartScanner(const sim::World& world, int port,
+                                                       uint64_t skip) {
+  auto source = sickemu::SimulatorScanSource::Create(world, 0);
+  EXPECT_TRUE(source.ok()) << source.status().ToString();
+  for (uint64_t i = 0; i < skip; ++i) (*source)->Next();
+  sickemu::EmulatorOptions o;
+  o.port = port;
+  o.protocol = drivers::sick::ColaProtocol::kColaB;
+  o.require_login = true;
+  auto emulator = std::make_unique<sickemu::ScannerEmulator>(o, std::move(source).value());
+  const core::Status started = emulator->Start();
+  EXPECT_TRUE(started.ok()) << started.ToString();
+  return emulator;
+}
+
+// Feeds the node: each scan from the driver with the simulator's odometry up to the scan's
+// time. The scanner's device clock is the simulation's clock, so a scan's host stamp minus
+// its device stamp maps simulated time to the host time the driver stamps in.
+class Feeder {
+ public:
+  Feeder(const sim::World& world, AgentNode* node)
+      : world_(world), odometry_(&world), node_(node) {}
+
+  void Scan(const DriverScan& scan) {
+    const double offset = scan.scan.stamp_s - scan.device_stamp_s;
+    while (true) {
+      if (!pending_) pending_ = odometry_.Next();
+      if (!pending_ || sim::EventTime(*pending_) > scan.device_stamp_s) break;
+      if (const auto* o = std::get_if<sim::OdometryEvent>(&*pending_))
+        node_->OnDriverOdometry({o->stamp_s + offset, o->odom_pose, o->v_mps, o->omega_radps});
+      pending_.reset();
+    }
+    truth_[lcmtypes::ToUtime(scan.scan.stamp_s)] =
+        world_.VehicleStateAt(0, scan.device_stamp_s).pose;
+    node_->OnDriverScan(scan.scan);
+    node_->Tick(scan.scan.stamp_s);
+  }
+  // Position error of every POSE_ the node sent, in order.
+  std::vector<double> Errors(const MemoryPublisher& out) const {
+    std::vector<double> errors;
+    for (const auto& p : out.Decoded<fleetmap::pose_with_covariance_t>("POSE_v1")) {
+      const core::Pose2& t = truth_.at(p.utime);
+      errors.push_back(std::hypot(p.pose.x_m - t.x_m, p.pose.y_m - t.y_m));
+    }
+    return errors;
+  }
+
+ private:
+  const sim::World& world_;
+  sim::Simulator odometry_;
+  std::optional<sim::SimEvent> pending_;
+  AgentNode* node_;
+  std::map<int64_t, core::Pose2> truth_;
+};
+
+double Median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Scans until `count` arrived; fails the test after a generous deadline (not a timing check).
+int Receive(SickScanInput& input, Feeder& feeder, int count) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  int got = 0;
+  while (got < count && std::chrono::steady_clock::now() < deadline) {
+    if (std::optional<DriverScan> scan = input.Next(0.05)) {
+      feeder.Scan(*scan);
+      ++got;
+    }
+  }
+  EXPECT_EQ(got, count) << "the scanner stopped sending";
+  return got;
+}
+
+TEST(SickAgentTest, LocalizesFromAScannerOverTcpAndCarriesOnAfterTheScannerRestarts) {
+  const sim::World world = testing::RoomWorld("[]", 30.0);
+  auto scanner = StartScanner(world, 0, 0);
+  const int port = scanner->port();
+
+  AgentNodeOptions options = testing::RoomOptions(world);
+  options.scans_from_lcm = false;
+  options.odometry_from_lcm = false;
+  MemoryPublisher out;
+  auto node = AgentNode::Create(options, &out, nullptr, world.static_map(), 0.0).value();
+  for (const Subscription& s : node->Subscriptions()) EXPECT_EQ(s.link, Link::kDownlink);
+
+  SickInputOptions input_options;
+  input_options.client.host = "127.0.0.1";
+  input_options.client.port = port;
+  input_options.client.protocol = drivers::sick::ColaProtocol::kColaB;
+  input_options.client.connect_timeout_s = 0.5;
+  input_options.client.silence_timeout_s = 0.5;
+  input_options.client.reconnect_backoff_initial_s = 0.05;
+  input_options.client.reconnect_backoff_max_s = 0.2;
+  ASSERT_TRUE(input_options.Validate().ok());
+  std::vector<std::string> log;
+  SickScanInput input(input_options,
+                      [&](LogLevel, const std::string& line) { log.push_back(line); });
+  Feeder feeder(world, node.get());
+
+  Receive(input, feeder, 75);  // 3 s
+  const uint64_t sent = scanner->stats().scans_sent.load();
+  scanner->Stop();  // the scanner goes away ...
+  scanner.reset();
+  for (int i = 0; i < 10; ++i) EXPECT_FALSE(input.Next(0.02).has_value());
+  scanner = StartScanner(world, port, sent);  // ... and comes back where it was
+  Receive(input, feeder, 75);
+  node->SetInputCounters(input.Counters());
+
+  const std::vector<double> errors = feeder.Errors(out);
+  ASSERT_EQ(errors.size(), 150u);
+  EXPECT_LT(Median(std::vector<double>(errors.begin() + 25, errors.end())), 0.03);
+  EXPECT_LT(*std::max_element(errors.begin() + 75, errors.end()), 0.1);  // after reconnecting
+  EXPECT_GE(testing::Counter(*node, "scanner_reconnects"), 1);
+  EXPECT_EQ(testing::Counter(*node, "scanner_bad_scans"), 0);
+  EXPECT_EQ(testing::Counter(*node, "scans"), 150);
+  EXPECT_EQ(node->state(), "running");
+  // The connection's loss and return were logged once each.
+  ASSERT_GE(log.size(), 3u);
+  EXPECT_NE(log[0].find("connected"), std::string::npos);
+  EXPECT_NE(log[1].find("lost"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fleetmap::vehicle_agent::node

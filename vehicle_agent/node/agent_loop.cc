@@ -1,0 +1,59 @@
+#include "vehicle_agent/node/agent_loop.h"
+
+#include <algorithm>
+
+namespace fleetmap::vehicle_agent::node {
+namespace {
+
+// With CAN odometry the loop passes more often: samples reach the node within 10 ms.
+constexpr double kCanWaitS = 0.01;
+// A scanner's client waits on its own socket: the LCM links are looked at between scans.
+constexpr double kScannerWaitS = 0.02;
+
+NamedCounters InputCounters(const LoopSources& sources) {
+  NamedCounters out;
+  if (sources.scanner) {
+    const NamedCounters s = sources.scanner->Counters();
+    out.insert(out.end(), s.begin(), s.end());
+  }
+  if (sources.odometry) {
+    const NamedCounters c = sources.odometry->Counters();
+    out.insert(out.end(), c.begin(), c.end());
+  }
+  return out;
+}
+
+}  // namespace
+
+core::Status RunAgentLoop(AgentNode& node, const LoopSources& sources, const LoopOptions& options,
+                          const volatile std::sig_atomic_t* stop,
+                          const std::function<double()>& clock) {
+  const double start_s = clock();
+  core::Status failure;
+  while (!*stop) {
+    if (options.duration_s > 0.0 && clock() - start_s >= options.duration_s) break;
+    double lcm_wait_s = options.wait_s;
+    if (sources.odometry) lcm_wait_s = std::min(lcm_wait_s, kCanWaitS);
+    if (sources.scanner) lcm_wait_s = 0.0;
+    const core::Result<int> handled = sources.links->Handle(lcm_wait_s);
+    if (!handled.ok()) {
+      failure = handled.status();
+      break;
+    }
+    if (sources.scanner) {
+      if (std::optional<DriverScan> scan =
+              sources.scanner->Next(std::min(options.wait_s, kScannerWaitS)))
+        node.OnDriverScan(scan->scan);
+    }
+    if (sources.odometry) {
+      for (const core::OdometrySample& odom : sources.odometry->Drain())
+        node.OnDriverOdometry(odom);
+    }
+    if (sources.scanner || sources.odometry) node.SetInputCounters(InputCounters(sources));
+    node.Tick(clock());
+  }
+  node.Shutdown(clock());
+  return failure;
+}
+
+}  // namespace fleetmap::vehicle_agent::node

@@ -1,0 +1,35 @@
+// The agent's single-threaded event loop: waits on the LCM links (or on the scanner, whose
+// client waits on its socket), hands everything received to the node, drains CAN odometry,
+// and ticks the node. It stops when the stop flag is set (SIGINT/SIGTERM) or after the
+// configured duration, and then shuts the node down (a map being built goes to the outbox).
+#pragma once
+
+#include <csignal>
+#include <functional>
+
+#include "vehicle_agent/node/agent_node.h"
+#include "vehicle_agent/node/can_odometry_input.h"
+#include "vehicle_agent/node/lcm_links.h"
+#include "vehicle_agent/node/sick_scan_input.h"
+
+namespace fleetmap::vehicle_agent::node {
+
+struct LoopSources {
+  LcmLinks* links = nullptr;             // required
+  SickScanInput* scanner = nullptr;      // scan_source sick
+  CanOdometryInput* odometry = nullptr;  // odom_source can
+};
+
+struct LoopOptions {
+  double wait_s = 0.05;     // longest wait for input per pass, s, > 0
+  double duration_s = 0.0;  // stop after this long, s; 0: only on the stop flag
+};
+
+// Runs until `*stop` becomes non-zero or the duration is over; `clock` is monotonic, in
+// seconds (the node's now_s). Returns an error when an LCM link failed (the node is shut
+// down all the same).
+core::Status RunAgentLoop(AgentNode& node, const LoopSources& sources, const LoopOptions& options,
+                          const volatile std::sig_atomic_t* stop,
+                          const std::function<double()>& clock);
+
+}  // namespace fleetmap::vehicle_agent::node

@@ -1,0 +1,50 @@
+#include "vehicle_agent/node/agent_messages.h"
+
+#include "lcmtypes/convert.h"
+
+namespace fleetmap::vehicle_agent::node {
+
+fleetmap::divergence_t DivergenceMessage(const std::string& vehicle_id, double scan_stamp_s,
+                                         const AgentStep& step, int32_t tempmap_sequence) {
+  fleetmap::divergence_t d;
+  d.utime = lcmtypes::ToUtime(scan_stamp_s);
+  d.vehicle_id = vehicle_id;
+  d.w_avg = step.divergence.w_avg;
+  d.w_slow = step.divergence.w_slow;
+  d.w_fast = step.divergence.w_fast;
+  d.d = step.divergence.d;
+  d.state = step.building ? fleetmap::divergence_t::BUILDING : fleetmap::divergence_t::FREE;
+  d.rotating = step.divergence.rotating;
+  d.tempmap_seq = tempmap_sequence;
+  return d;
+}
+
+fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t have_version,
+                                          int64_t utime) {
+  fleetmap::map_request_t r;
+  r.utime = utime;
+  r.vehicle_id = vehicle_id;
+  r.have_version = have_version;
+  r.num_tiles = 0;  // no tile list: the whole map, or the deltas since have_version
+  return r;
+}
+
+fleetmap::status_t StatusMessage(const std::string& process, const std::string& software_version,
+                                 int32_t map_version, const std::string& state,
+                                 const NamedCounters& counters, int64_t utime) {
+  fleetmap::status_t s;
+  s.utime = utime;
+  s.process = process;
+  s.software_version = software_version;
+  s.map_version = map_version;
+  s.state = state;
+  s.authenticated = false;
+  for (const auto& [name, value] : counters) {
+    s.counter_names.push_back(name);
+    s.counter_values.push_back(value);
+  }
+  s.num_counters = static_cast<int32_t>(s.counter_names.size());
+  return s;
+}
+
+}  // namespace fleetmap::vehicle_agent::node

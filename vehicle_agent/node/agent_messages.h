@@ -1,0 +1,34 @@
+// The messages the agent builds itself (the others come from lcmtypes' conversions), and
+// the encoding of any message into the bytes a Publisher sends.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fleetmap/divergence_t.hpp"
+#include "fleetmap/map_request_t.hpp"
+#include "fleetmap/status_t.hpp"
+#include "vehicle_agent/agent_pipeline.h"
+#include "vehicle_agent/node/agent_counters.h"
+
+namespace fleetmap::vehicle_agent::node {
+
+// DIVERGENCE_<id>: the paper's Fig. 3 sample of one scan, stamped with the scan's time.
+fleetmap::divergence_t DivergenceMessage(const std::string& vehicle_id, double scan_stamp_s,
+                                         const AgentStep& step, int32_t tempmap_sequence);
+// MAP_REQUEST for the whole map (or the deltas since have_version, -1: none held).
+fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t have_version,
+                                          int64_t utime);
+fleetmap::status_t StatusMessage(const std::string& process, const std::string& software_version,
+                                 int32_t map_version, const std::string& state,
+                                 const NamedCounters& counters, int64_t utime);
+
+template <typename T>
+std::vector<uint8_t> Encode(const T& message) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+}  // namespace fleetmap::vehicle_agent::node

@@ -1,0 +1,404 @@
+#include "vehicle_agent/node/agent_node.h"
+
+#include <cmath>
+
+#include "fleetmap/tempmap_ack_t.hpp"
+#include "lcmtypes/convert.h"
+#include "lcmtypes/transport_convert.h"
+#include "vehicle_agent/node/agent_messages.h"
+
+namespace fleetmap::vehicle_agent::node {
+namespace {
+
+const std::string kAggregatorStatus = lcmtypes::StatusChannel("aggregator");
+
+// The covariance of an external pose, or the localizer's sigmas when it has none.
+Eigen::Matrix3d ExternalCovariance(const core::PoseEstimate& pose, const LocalizerOptions& o) {
+  const Eigen::Vector3d d = pose.covariance.diagonal();
+  if (pose.covariance.allFinite() && d.minCoeff() > 0.0) return pose.covariance;
+  return Eigen::Vector3d(o.external_sigma_xy_m * o.external_sigma_xy_m,
+                         o.external_sigma_xy_m * o.external_sigma_xy_m,
+                         o.external_sigma_theta_rad * o.external_sigma_theta_rad)
+      .asDiagonal();
+}
+
+}  // namespace
+
+core::Result<std::unique_ptr<AgentNode>> AgentNode::Create(
+    AgentNodeOptions options, Publisher* publisher, LogSink log,
+    std::optional<core::OccupancyGrid> static_map, double now_s) {
+  const StoredSequence stored = SequenceStore(options.outbox.state_dir).Load();
+  options.pipeline.first_sequence = stored.next;
+  if (options.initial_pose == InitialPoseSource::kGlobal)
+    options.pipeline.localizer.initial_pose_mode = InitialPoseMode::kGlobal;
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  std::unique_ptr<AgentNode> node(new AgentNode(std::move(options), publisher, log, now_s));
+  if (!stored.issue.ok()) {
+    node->log_.Warning("temporary-map numbering: " + stored.issue.ToString() + "; going on from " +
+                       std::to_string(stored.next));
+  }
+  if (static_map) {
+    FLEETMAP_RETURN_IF_ERROR(node->follower_.Seed(std::move(*static_map), 0).WithContext("--map"));
+    node->map_dirty_ = true;
+  }
+  const int reloaded = node->outbox_.LoadPersisted(now_s);
+  if (reloaded > 0) {
+    node->log_.Info(std::to_string(reloaded) + " unacknowledged temporary map(s) reloaded from " +
+                    node->options_.outbox.state_dir + ": sending them again");
+  }
+  return node;
+}
+
+AgentNode::AgentNode(AgentNodeOptions options, Publisher* publisher, LogSink log, double now_s)
+    : options_(std::move(options)),
+      publisher_(publisher),
+      log_(std::move(log)),
+      sequences_(options_.outbox.state_dir),
+      pipeline_(options_.pipeline),
+      outbox_(options_.outbox),
+      follower_(options_.map),
+      queue_(options_.queue),
+      next_status_s_(now_s) {}
+
+std::vector<Subscription> AgentNode::Subscriptions() const {
+  const std::string& id = options_.pipeline.vehicle_id;
+  std::vector<Subscription> subs;
+  if (options_.scans_from_lcm) subs.push_back({Link::kSensor, lcmtypes::ScanChannel(id)});
+  if (options_.odometry_from_lcm) subs.push_back({Link::kSensor, lcmtypes::OdomChannel(id)});
+  if (options_.use_external_pose)
+    subs.push_back({Link::kSensor, lcmtypes::ExternalPoseChannel(id)});
+  for (const char* channel :
+       {lcmtypes::kTempMapAckChannel, lcmtypes::kMapDeltaChannel, lcmtypes::kMapKeyframeChannel})
+    subs.push_back({Link::kDownlink, channel});
+  subs.push_back({Link::kDownlink, kAggregatorStatus});
+  return subs;
+}
+
+// ---- input ----------------------------------------------------------------------------------
+
+void AgentNode::OnMessage(Link link, const std::string& channel, const void* data, int size,
+                          double now_s) {
+  const std::string& id = options_.pipeline.vehicle_id;
+  // A shared LCM instance (the same URL for two links) delivers more than we asked for.
+  if (link == Link::kSensor) {
+    if (channel == lcmtypes::ScanChannel(id) && options_.scans_from_lcm) {
+      ++counters_.messages;
+      OnScan(data, size);
+    } else if (channel == lcmtypes::OdomChannel(id) && options_.odometry_from_lcm) {
+      ++counters_.messages;
+      OnOdometry(data, size);
+    } else if (channel == lcmtypes::ExternalPoseChannel(id) && options_.use_external_pose) {
+      ++counters_.messages;
+      OnExternalPose(data, size);
+    }
+    return;
+  }
+  if (link != Link::kDownlink) return;
+  if (channel == lcmtypes::kTempMapAckChannel) {
+    OnAck(data, size);
+  } else if (channel == lcmtypes::kMapDeltaChannel) {
+    OnDelta(data, size);
+  } else if (channel == lcmtypes::kMapKeyframeChannel) {
+    OnKeyframe(data, size);
+  } else if (channel == kAggregatorStatus) {
+    OnAggregatorStatus(data, size, now_s);
+  } else {
+    return;
+  }
+  ++counters_.messages;
+}
+
+void AgentNode::Malformed(const std::string& channel, const core::Status& why) {
+  ++counters_.malformed_messages;
+  log_.Once(channel + ": " + core::StatusCodeName(why.code()),
+            channel + ": bad message dropped: " + why.ToString());
+}
+
+template <typename T>
+std::optional<T> AgentNode::Decode(const std::string& channel, const void* data, int size) {
+  core::Result<T> m = lcmtypes::Decode<T>(data, size);
+  if (!m.ok()) {
+    Malformed(channel, m.status());
+    return std::nullopt;
+  }
+  return std::move(m).value();
+}
+
+bool AgentNode::OurVehicle(const std::string& channel, const std::string& vehicle_id) {
+  if (vehicle_id == options_.pipeline.vehicle_id) return true;
+  ++counters_.wrong_vehicle;
+  log_.Once(channel + ": wrong vehicle",
+            channel + ": message names vehicle '" + vehicle_id.substr(0, 64) + "': dropped");
+  return false;
+}
+
+void AgentNode::OnScan(const void* data, int size) {
+  const std::string channel = lcmtypes::ScanChannel(options_.pipeline.vehicle_id);
+  auto m = Decode<fleetmap::laser_scan_t>(channel, data, size);
+  if (!m || !OurVehicle(channel, m->vehicle_id)) return;
+  core::Result<core::LaserScan> scan = lcmtypes::FromMessage(*m);
+  if (!scan.ok()) return Malformed(channel, scan.status());
+  queue_.Push(std::move(scan).value());
+}
+
+void AgentNode::OnOdometry(const void* data, int size) {
+  const std::string channel = lcmtypes::OdomChannel(options_.pipeline.vehicle_id);
+  auto m = Decode<fleetmap::odometry_t>(channel, data, size);
+  if (!m || !OurVehicle(channel, m->vehicle_id)) return;
+  core::Result<core::OdometrySample> odom = lcmtypes::FromMessage(*m);
+  if (!odom.ok()) return Malformed(channel, odom.status());
+  queue_.Push(*odom);
+}
+
+void AgentNode::OnExternalPose(const void* data, int size) {
+  const std::string channel = lcmtypes::ExternalPoseChannel(options_.pipeline.vehicle_id);
+  auto m = Decode<fleetmap::pose_with_covariance_t>(channel, data, size);
+  if (!m || !OurVehicle(channel, m->vehicle_id)) return;
+  core::Result<core::PoseEstimate> pose = lcmtypes::FromMessage(*m);
+  if (!pose.ok()) return Malformed(channel, pose.status());
+  queue_.Push(ExternalPoseInput{*pose});
+}
+
+void AgentNode::OnDriverScan(const core::LaserScan& scan) {
+  const core::Status valid = scan.Validate();
+  if (!valid.ok()) return Malformed("scanner", valid);
+  queue_.Push(scan);
+}
+
+void AgentNode::OnDriverOdometry(const core::OdometrySample& odom) {
+  const core::Status valid = odom.Validate();
+  if (!valid.ok()) return Malformed("odometry", valid);
+  queue_.Push(odom);
+}
+
+void AgentNode::OnAck(const void* data, int size) {
+  auto m = Decode<fleetmap::tempmap_ack_t>(lcmtypes::kTempMapAckChannel, data, size);
+  if (!m || m->vehicle_id != options_.pipeline.vehicle_id) return;  // others' acks: not ours
+  if (m->outcome < fleetmap::tempmap_ack_t::PENDING ||
+      m->outcome > fleetmap::tempmap_ack_t::DUPLICATE)
+    return Malformed(lcmtypes::kTempMapAckChannel, core::InvalidArgument("unknown ack outcome"));
+  std::vector<int32_t> received;
+  for (int16_t i : m->received_tiles) {
+    if (i < 0 || i >= m->tile_count)
+      return Malformed(lcmtypes::kTempMapAckChannel,
+                       core::OutOfRange("acknowledged tile index outside the map's tiles"));
+    received.push_back(i);
+  }
+  ++counters_.acks;
+  const auto outcome = static_cast<AckOutcome>(m->outcome);
+  const size_t pending_before = outbox_.pending();
+  outbox_.OnAck(m->tempmap_seq, received, outcome);
+  if (outbox_.pending() == pending_before) return;  // a repeated final ack, or not pending
+  const std::string what = "temporary map " + std::to_string(m->tempmap_seq);
+  switch (outcome) {
+    case AckOutcome::kMerged:
+      ++counters_.maps_merged;
+      log_.Info(what + " merged: map version " + std::to_string(m->map_version));
+      break;
+    case AckOutcome::kRejected:
+      ++counters_.maps_rejected;
+      log_.Info(what + " rejected by the aggregator: " + m->reason.substr(0, 200));
+      break;
+    case AckOutcome::kDuplicate:
+      ++counters_.maps_duplicate;
+      log_.Info(what + " was already handled by the aggregator (duplicate)");
+      break;
+    case AckOutcome::kPending:
+      break;
+  }
+}
+
+void AgentNode::MapTile(const std::string& channel, const core::Result<bool>& added) {
+  if (!added.ok()) {
+    log_.Once(channel + ": " + core::StatusCodeName(added.status().code()),
+              channel + ": tile refused: " + added.status().ToString());
+    return;
+  }
+  map_dirty_ |= *added;
+}
+
+void AgentNode::OnDelta(const void* data, int size) {
+  auto m = Decode<fleetmap::map_delta_t>(lcmtypes::kMapDeltaChannel, data, size);
+  if (!m) return;
+  core::Result<core::DeltaTile> tile = lcmtypes::FromMessage(*m);
+  if (!tile.ok()) return Malformed(lcmtypes::kMapDeltaChannel, tile.status());
+  MapTile(lcmtypes::kMapDeltaChannel, follower_.OnDeltaTile(*tile));
+}
+
+void AgentNode::OnKeyframe(const void* data, int size) {
+  auto m = Decode<fleetmap::map_keyframe_t>(lcmtypes::kMapKeyframeChannel, data, size);
+  if (!m) return;
+  core::Result<core::KeyframeTile> tile = lcmtypes::FromMessage(*m);
+  if (!tile.ok()) return Malformed(lcmtypes::kMapKeyframeChannel, tile.status());
+  MapTile(lcmtypes::kMapKeyframeChannel, follower_.OnKeyframeTile(*tile));
+}
+
+void AgentNode::OnAggregatorStatus(const void* data, int size, double now_s) {
+  auto m = Decode<fleetmap::status_t>(kAggregatorStatus, data, size);
+  if (m && m->map_version >= 0) follower_.OnRemoteVersion(m->map_version, now_s);
+}
+
+// ---- processing -----------------------------------------------------------------------------
+
+void AgentNode::Tick(double now_s) {
+  if (map_dirty_) ApplyMap();
+  for (const SensorInput& input : queue_.TakeAll()) Process(input, now_s);
+  SendMapRequest(now_s);
+  SendTiles(now_s);
+  if (now_s >= next_status_s_) {
+    SendStatus(now_s);
+    // Not now_s + period: a late tick must not shift every later heartbeat.
+    next_status_s_ = std::max(next_status_s_ + options_.status_period_s, now_s);
+  }
+}
+
+void AgentNode::ApplyMap() {
+  map_dirty_ = false;
+  if (!follower_.has_map() || follower_.version() == applied_version_) return;
+  const core::Status s = pipeline_.SetMap(follower_.map(), follower_.version());
+  if (!s.ok()) {
+    ++counters_.map_swaps_failed;
+    log_.Once("map swap",
+              "map version " + std::to_string(follower_.version()) + " not used: " + s.ToString());
+    return;
+  }
+  const bool first = !map_applied_;
+  map_applied_ = true;
+  applied_version_ = follower_.version();
+  log_.Info("map version " + std::to_string(applied_version_) + " in use");
+  if (!first) return;
+  // The first map initialises the filter (given pose or global), unless an external pose
+  // is to do it.
+  pose_initialized_ = options_.initial_pose != InitialPoseSource::kFirstExternal;
+  if (early_external_) InitializeFromExternal(*early_external_);
+}
+
+void AgentNode::Process(const SensorInput& input, double now_s) {
+  if (const auto* scan = std::get_if<core::LaserScan>(&input)) return ProcessScan(*scan, now_s);
+  if (const auto* odom = std::get_if<core::OdometrySample>(&input)) {
+    ++counters_.odometry;
+    return pipeline_.AddOdometry(*odom);
+  }
+  ProcessExternalPose(std::get<ExternalPoseInput>(input).pose);
+}
+
+void AgentNode::ProcessExternalPose(const core::PoseEstimate& pose) {
+  ++counters_.external_poses;
+  if (!map_applied_) {
+    early_external_ = pose;
+    return;
+  }
+  if (!pose_initialized_) return InitializeFromExternal(pose);
+  (void)pipeline_.AddExternalPose(pose);  // the localizer counts what it refuses
+}
+
+void AgentNode::InitializeFromExternal(const core::PoseEstimate& pose) {
+  early_external_.reset();
+  if (options_.initial_pose != InitialPoseSource::kFirstExternal || pose_initialized_) return;
+  const core::Status s = pipeline_.InitializeAt(
+      pose.pose_in_map, ExternalCovariance(pose, options_.pipeline.localizer));
+  if (!s.ok()) return Malformed(lcmtypes::ExternalPoseChannel(options_.pipeline.vehicle_id), s);
+  pose_initialized_ = true;
+  log_.Info("initial pose from the external localization");
+}
+
+void AgentNode::ProcessScan(const core::LaserScan& scan, double now_s) {
+  if (!map_applied_) {
+    ++counters_.scans_waiting_for_map;
+    return;
+  }
+  if (!pose_initialized_) {
+    ++counters_.scans_waiting_for_pose;
+    return;
+  }
+  const AgentStep step = pipeline_.AddScan(scan);
+  ++counters_.scans;
+  building_ = step.building;
+  PublishStep(scan, step);
+  if (step.closed_map) Keep(*step.closed_map, now_s);
+}
+
+void AgentNode::Keep(const core::TempMap& map, double now_s) {
+  ++counters_.tempmaps_closed;
+  // The number goes on disk before the map leaves: a crash now cannot reuse it.
+  const core::Status stored = sequences_.Store(map.sequence + 1);
+  if (!stored.ok()) log_.Once("sequence store", "cannot store the numbering: " + stored.ToString());
+  const core::Status added = outbox_.Add(map, now_s);
+  if (!added.ok()) {
+    log_.Once("outbox", "temporary map not kept: " + added.ToString());
+    return;
+  }
+  log_.Info("temporary map " + std::to_string(map.sequence) +
+            " closed: " + std::to_string(map.grid.geometry().width()) + " x " +
+            std::to_string(map.grid.geometry().height()) + " cells over " +
+            std::to_string(static_cast<int>(std::lround(map.end_s - map.start_s))) + " s");
+}
+
+void AgentNode::Shutdown(double now_s) {
+  if (map_dirty_) ApplyMap();
+  for (const SensorInput& input : queue_.TakeAll()) Process(input, now_s);
+  if (std::optional<core::TempMap> last = pipeline_.Flush(now_s)) Keep(*last, now_s);
+  building_ = false;
+  SendTiles(now_s);
+  SendStatus(now_s);
+}
+
+// ---- output ---------------------------------------------------------------------------------
+
+int64_t AgentNode::Utime(double now_s) const {
+  return lcmtypes::ToUtime(now_s + options_.utime_offset_s);
+}
+
+template <typename T>
+void AgentNode::Send(Link link, const std::string& channel, const T& message) {
+  if (!publisher_->Publish(link, channel, Encode(message))) {
+    ++counters_.publish_failures;
+    log_.Once("publish " + channel, "cannot publish on " + channel + " (" + LinkName(link) + ")");
+  }
+}
+
+void AgentNode::PublishStep(const core::LaserScan& scan, const AgentStep& step) {
+  const std::string& id = options_.pipeline.vehicle_id;
+  Send(options_.pose_link, lcmtypes::PoseChannel(id), lcmtypes::ToMessage(step.pose, id));
+  // The map being built, or the last one: sequences are handed out one per started map.
+  const auto sequence = static_cast<int32_t>(options_.pipeline.first_sequence - 1 +
+                                             pipeline_.counters().temp_maps_started);
+  Send(options_.pose_link, lcmtypes::DivergenceChannel(id),
+       DivergenceMessage(id, scan.stamp_s, step, sequence));
+}
+
+void AgentNode::SendTiles(double now_s) {
+  const std::string channel = lcmtypes::TempMapChannel(options_.pipeline.vehicle_id);
+  for (const core::TempMapTile& tile : outbox_.Due(now_s))
+    Send(Link::kUplink, channel, lcmtypes::ToMessage(tile, Utime(now_s)));
+}
+
+void AgentNode::SendMapRequest(double now_s) {
+  if (const std::optional<int32_t> have = follower_.RequestDue(now_s)) {
+    Send(Link::kUplink, lcmtypes::kMapRequestChannel,
+         MapRequestMessage(options_.pipeline.vehicle_id, *have, Utime(now_s)));
+  }
+}
+
+void AgentNode::SendStatus(double now_s) {
+  const std::string process = "agent_" + options_.pipeline.vehicle_id;
+  Send(Link::kUplink, lcmtypes::StatusChannel(process),
+       StatusMessage(process, options_.software_version, map_version(), state(), AllCounters(),
+                     Utime(now_s)));
+}
+
+std::string AgentNode::state() const {
+  if (!map_applied_) return "waiting_for_map";
+  if (!pose_initialized_) return "waiting_for_pose";
+  return building_ ? "building" : "running";
+}
+
+NamedCounters AgentNode::AllCounters() const {
+  NamedCounters out = CollectCounters(counters_, queue_, outbox_.counters(), follower_.counters(),
+                                      pipeline_.localizer().counters());
+  out.emplace_back("tempmaps_pending", static_cast<int64_t>(outbox_.pending()));
+  out.insert(out.end(), input_counters_.begin(), input_counters_.end());
+  return out;
+}
+
+}  // namespace fleetmap::vehicle_agent::node

@@ -1,0 +1,112 @@
+// The agent process without its sockets: the LCM and driver edge of the vehicle_agent
+// library. Messages come in as (link, channel, bytes), scans and odometry from drivers as
+// core types, time is passed in, and everything it sends goes through a Publisher, so that
+// tests run it in memory and the process binds it to LCM (lcm_links.h).
+//
+// Per loop (Tick): a new map version goes to the pipeline without stopping it; queued scans
+// are localized (POSE_<id>, DIVERGENCE_<id>) and closed temporary maps go to the outbox,
+// which sends their tiles (TEMPMAP_<id>) until the aggregator acknowledges them; MAP_REQUEST
+// when the map needs catching up; STATUS_agent_<id> every status period. Bad input is
+// counted, logged once per cause, and never stops the node.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vehicle_agent/node/agent_counters.h"
+#include "vehicle_agent/node/agent_node_options.h"
+#include "vehicle_agent/node/cause_log.h"
+#include "vehicle_agent/node/sequence_store.h"
+
+namespace fleetmap::vehicle_agent::node {
+
+class AgentNode {
+ public:
+  // `publisher` outlives the node. `static_map`: the static map file, held as version 0
+  // (the aggregator's version 0), or nothing: wait for a keyframe. Reloads the temporary
+  // maps left pending in options.outbox.state_dir and continues their numbering.
+  static core::Result<std::unique_ptr<AgentNode>> Create(
+      AgentNodeOptions options, Publisher* publisher, LogSink log,
+      std::optional<core::OccupancyGrid> static_map, double now_s);
+
+  // What the edge must subscribe to for this configuration.
+  std::vector<Subscription> Subscriptions() const;
+
+  // One received message: decoded, checked and queued (or applied, for map tiles).
+  void OnMessage(Link link, const std::string& channel, const void* data, int size, double now_s);
+  // Inputs from drivers at the process edge (a SICK scanner, CAN odometry).
+  void OnDriverScan(const core::LaserScan& scan);
+  void OnDriverOdometry(const core::OdometrySample& odom);
+  // The drivers' counters, reported in STATUS after the node's own.
+  void SetInputCounters(NamedCounters counters) { input_counters_ = std::move(counters); }
+
+  // Applies a new map version, processes the queued inputs, sends what is due.
+  void Tick(double now_s);
+  // At exit: a temporary map being built is closed into the outbox (and its state folder),
+  // its tiles are sent once, and a last STATUS goes out.
+  void Shutdown(double now_s);
+
+  // "waiting_for_map", "waiting_for_pose", "building" (a temporary map) or "running".
+  std::string state() const;
+  int32_t map_version() const { return map_applied_ ? applied_version_ : -1; }
+  const MapFollower& map() const { return follower_; }
+  const AgentPipeline& pipeline() const { return pipeline_; }
+  const TempMapOutbox& outbox() const { return outbox_; }
+  const AgentNodeCounters& counters() const { return counters_; }
+  NamedCounters AllCounters() const;
+  const AgentNodeOptions& options() const { return options_; }
+
+ private:
+  AgentNode(AgentNodeOptions options, Publisher* publisher, LogSink log, double now_s);
+
+  // Channel handlers: decode, check, hand on.
+  void OnScan(const void* data, int size);
+  void OnOdometry(const void* data, int size);
+  void OnExternalPose(const void* data, int size);
+  void OnAck(const void* data, int size);
+  void OnDelta(const void* data, int size);
+  void OnKeyframe(const void* data, int size);
+  void OnAggregatorStatus(const void* data, int size, double now_s);
+  template <typename T>
+  std::optional<T> Decode(const std::string& channel, const void* data, int size);
+  void Malformed(const std::string& channel, const core::Status& why);
+  bool OurVehicle(const std::string& channel, const std::string& vehicle_id);
+  void MapTile(const std::string& channel, const core::Result<bool>& added);
+
+  void ApplyMap();
+  void Process(const SensorInput& input, double now_s);
+  void ProcessScan(const core::LaserScan& scan, double now_s);
+  void ProcessExternalPose(const core::PoseEstimate& pose);
+  void InitializeFromExternal(const core::PoseEstimate& pose);
+  void Keep(const core::TempMap& map, double now_s);
+  void SendTiles(double now_s);
+  void SendMapRequest(double now_s);
+  void SendStatus(double now_s);
+  void PublishStep(const core::LaserScan& scan, const AgentStep& step);
+  template <typename T>
+  void Send(Link link, const std::string& channel, const T& message);
+  int64_t Utime(double now_s) const;
+
+  const AgentNodeOptions options_;
+  Publisher* const publisher_;
+  CauseLog log_;
+  SequenceStore sequences_;
+  AgentPipeline pipeline_;
+  TempMapOutbox outbox_;
+  MapFollower follower_;
+  InputQueue queue_;
+  bool map_dirty_ = false;  // the follower has a version the pipeline does not
+  bool map_applied_ = false;
+  int32_t applied_version_ = -1;
+  bool pose_initialized_ = false;
+  std::optional<core::PoseEstimate> early_external_;  // before the first map
+  bool building_ = false;
+  double next_status_s_;
+  AgentNodeCounters counters_;
+  NamedCounters input_counters_;
+};
+
+}  // namespace fleetmap::vehicle_agent::node
