@@ -104,6 +104,7 @@ trap cleanup EXIT
 trap 'echo "fleet_run.sh: interrupted" >&2; exit 130' INT TERM
 
 epoch=$(date +%s)
+echo "$epoch" >"$out/logs/epoch.txt"  # fleetmap-eval --epoch: message stamps - epoch = simulated s
 for group in sensor uplink downlink; do
   "${run[@]}" lcm-logger -q -f --lcm-url="${!group}" "$out/logs/$group.lcmlog" &
   loggers+=($!)
@@ -114,8 +115,9 @@ done
 aggregator=$!
 vehicle_maps=()
 for line in "${vehicles[@]}"; do
-  read -r id x y theta <<<"$line"
+  read -r id x y theta mx my mtheta <<<"$line"
   "${run[@]}" "$bin/fleetmap-agent" --vehicle-id "$id" --map "$static_map" --initial-pose "$x,$y,$theta" \
+    --scanner-mount "$mx,$my,$mtheta" \
     --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
     --state-dir "$out/state/$id" --final-map "$out/maps/$id.yaml" --quiet \
     >"$out/logs/agent_$id.txt" 2>&1 &

@@ -32,8 +32,9 @@ options:
   --no-truth       do not publish TRUTH_<ID>
   --vehicles A,B   publish only these vehicles (e.g. one simulator per vehicle host in a LAN
                    experiment; the world, with every vehicle in it, is the same)   [all]
-  --list-vehicles  print a line `ID X Y THETA` per vehicle (metres, radians: its pose at time
-                   0, an agent's --initial-pose), a line `map FILE` (the static map), and exit
+  --list-vehicles  print a line `ID X Y THETA MX MY MTHETA` per vehicle (metres, radians: its
+                   pose at time 0, an agent's --initial-pose, and its scanner mount, the
+                   agent's --scanner-mount), a line `map FILE` (the static map), and exit
   -h, --help       this text
 Stops cleanly on SIGINT/SIGTERM. Exit status: 0 done, 1 bad scenario or LCM failure, 2 usage.
 The multicast URL needs a route (loopback: ip route add 224.0.0.0/4 dev lo).
@@ -110,8 +111,9 @@ int main(int argc, char** argv) {
   if (args.list_vehicles) {
     for (size_t i = 0; i < world->scenario().vehicles.size(); ++i) {
       const core::Pose2 p = world->VehicleStateAt(i, 0.0).pose;
-      std::printf("%s %.4f %.4f %.6f\n", world->scenario().vehicles[i].id.c_str(), p.x_m, p.y_m,
-                  p.theta_rad);
+      const core::Pose2 m = world->scenario().vehicles[i].scanner_mount;
+      std::printf("%s %.4f %.4f %.6f %.4f %.4f %.6f\n", world->scenario().vehicles[i].id.c_str(),
+                  p.x_m, p.y_m, p.theta_rad, m.x_m, m.y_m, m.theta_rad);
     }
     std::printf("map %s\n",
                 args.map.empty() ? world->scenario().map_yaml.c_str() : args.map.c_str());

@@ -81,8 +81,9 @@ TEST_F(RecordedRunTest, RebuildsMergesVersionsTracesAndLatency) {
   map.grid = core::OccupancyGrid(core::GridGeometry(0.05, 40, 30, core::Pose2(-1.0, -0.75, 0)));
   map.start_s = kEpoch + 1.0;
   map.end_s = kEpoch + 2.0;
-  // The aggregator's correction undoes the anchor's error exactly.
-  const core::Pose2 correction = truth * anchor.Inverse();
+  // The aggregator's correction moves the anchor exactly onto the truth.
+  const core::Pose2 correction(truth.x_m - anchor.x_m, truth.y_m - anchor.y_m,
+                               truth.theta_rad - anchor.theta_rad);
 
   core::OccupancyGrid changed = world_->static_map();
   changed.SetState({100, 60}, core::CellState::kOccupied);

@@ -161,8 +161,10 @@ class Reader {
     r.merged_s = m.end_s + (e.wall_utime - m.first_tile_wall_utime) * 1e-6;
     r.accepted = msg->accepted;
     r.reason = msg->reason;
-    const core::Pose2 correction(msg->dx_m, msg->dy_m, msg->dtheta_rad);
-    r.placed_origin = correction * (m.anchor * m.grid_origin);
+    // The report's dx, dy, dtheta move the anchor (merge_report_t): the placed anchor.
+    const core::Pose2 placed(m.anchor.x_m + msg->dx_m, m.anchor.y_m + msg->dy_m,
+                             core::NormalizeAngle(m.anchor.theta_rad + msg->dtheta_rad));
+    r.placed_origin = placed * m.grid_origin;
     r.true_origin = world_.VehicleStateAt(vehicle->second, m.start_s).pose * m.grid_origin;
     for (const fleetmap::line_match_t& l : msg->matches)
       r.lines.push_back({l.temp_line_id, l.static_line_id, l.distance_diff_px, l.angle_diff_deg});
@@ -306,11 +308,13 @@ std::string FleetFigureLines(const FleetFigures& f) {
   std::string out;
   for (const auto& [key, value] : FleetJsonPairs(f)) {
     if (value == "null") continue;
-    const char* unit =
-        key.rfind("fleet.bytes_per_s.", 0) == 0                                           ? "B/s"
-        : key.find("_s.") != std::string::npos && key.find(".count") == std::string::npos ? "s"
-        : key == "fleet.wall_span_s"                                                      ? "s"
-                                                                                          : "count";
+    const bool per_s = key.rfind("fleet.bytes_per_s.", 0) == 0;
+    const bool rate = key.rfind("fleet.messages_per_s.", 0) == 0;
+    const bool size = key.rfind("fleet.mean_message_bytes.", 0) == 0;
+    const bool seconds =
+        key == "fleet.wall_span_s" ||
+        (key.rfind("fleet.change_latency_s.", 0) == 0 && key != "fleet.change_latency_s.count");
+    const char* unit = per_s ? "B/s" : rate ? "1/s" : size ? "B" : seconds ? "s" : "count";
     out += key + " " + value + " " + unit + "\n";
   }
   return out;
