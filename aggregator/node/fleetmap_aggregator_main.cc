@@ -1,0 +1,268 @@
+// fleetmap-aggregator: the server of the fleet. Receives temporary maps over LCM, merges
+// them into the versioned current map and sends the changes back; or replays LCM logs into
+// the same code. See --help and docs/aggregator_process.md.
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "aggregator/node/aggregator_node.h"
+#include "aggregator/node/lcm_links.h"
+#include "aggregator/node/log_replay.h"
+#include "aggregator/node/node_config.h"
+#include "core/map_io.h"
+#include "core/map_render.h"
+
+namespace {
+
+using namespace fleetmap;
+using namespace fleetmap::aggregator::node;
+
+constexpr const char* kUsage = R"(usage: fleetmap-aggregator --map STATIC.yaml [options]
+
+Receives temporary maps (TEMPMAP_<vehicle>) and MAP_REQUEST on the uplink, merges accepted
+maps into the versioned current map and answers on the downlink: TEMPMAP_ACK, MERGE_REPORT,
+MAP_DELTA, MAP_KEYFRAME, STATUS_aggregator. docs/aggregator_process.md has the details.
+options:
+  --map FILE           static map, map_server YAML + image (required)
+  --config FILE        YAML settings (docs/aggregator_process.md); the flags below override it
+  --state-dir DIR      keep the current map (snapshot + journal) and acknowledged tiles here,
+                       and restore them at start                       [none: memory only]
+  --uplink-url URL     where vehicles send          [udpm://239.255.76.67:7667?ttl=0]
+  --downlink-url URL   where the aggregator answers [udpm://239.255.76.68:7668?ttl=0]
+  --final-map FILE     at exit, write the current map there (map_server YAML + PGM) and a
+                       PNG picture beside it
+  --duration S         stop after S seconds (live)                      [until a signal]
+  --replay LOG...      instead of listening, feed the uplink messages of these LCM logs in
+                       event-time order, as fast as possible; publishes nothing
+  --quiet              no progress lines
+  -h, --help           this text
+  --version            the version
+Ends with the line "aggregator: version N map_hash HEX merged M rejected R" on stdout (the
+same function in live and replay runs). SIGINT/SIGTERM: finishes the message at hand, writes
+a snapshot and the final map, prints that line and exits 0.
+Exit status: 0 done, 1 bad map/config/state or LCM failure, 2 usage.
+Multicast on one host needs a route: run scripts/setup_multicast.sh as root.
+)";
+
+volatile std::sig_atomic_t g_stop = 0;
+void OnSignal(int) { g_stop = 1; }
+
+struct Args {
+  std::string map, config, state_dir, uplink_url, downlink_url, final_map;
+  double duration_s = -1.0;
+  std::vector<std::string> replay;
+  bool quiet = false;
+};
+
+bool Parse(int argc, char** argv, Args& a) {
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      const bool has_value = i + 1 < argc;
+      if (arg == "--map" && has_value) {
+        a.map = argv[++i];
+      } else if (arg == "--config" && has_value) {
+        a.config = argv[++i];
+      } else if (arg == "--state-dir" && has_value) {
+        a.state_dir = argv[++i];
+      } else if (arg == "--uplink-url" && has_value) {
+        a.uplink_url = argv[++i];
+      } else if (arg == "--downlink-url" && has_value) {
+        a.downlink_url = argv[++i];
+      } else if (arg == "--final-map" && has_value) {
+        a.final_map = argv[++i];
+      } else if (arg == "--duration" && has_value) {
+        a.duration_s = std::stod(argv[++i]);
+        if (!(a.duration_s >= 0)) throw std::invalid_argument("duration");
+      } else if (arg == "--replay" && has_value) {
+        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
+          a.replay.push_back(argv[++i]);
+      } else if (arg == "--quiet") {
+        a.quiet = true;
+      } else {
+        std::fprintf(stderr, "fleetmap-aggregator: bad or incomplete argument '%s'\n", arg.c_str());
+        return false;
+      }
+    }
+  } catch (const std::exception&) {
+    std::fprintf(stderr, "fleetmap-aggregator: --duration takes a number of seconds >= 0\n");
+    return false;
+  }
+  if (a.map.empty()) std::fprintf(stderr, "fleetmap-aggregator: --map is required\n");
+  return !a.map.empty();
+}
+
+LogSink StderrLog() {
+  return [](LogLevel level, const std::string& line) {
+    std::fprintf(stderr, "fleetmap-aggregator: %s%s\n",
+                 level == LogLevel::kWarning ? "warning: " : "", line.c_str());
+  };
+}
+
+core::Result<AggregatorProcessConfig> Configure(const Args& args) {
+  AggregatorProcessConfig config = DefaultProcessConfig();
+  if (!args.config.empty()) FLEETMAP_ASSIGN_OR_RETURN(config, LoadProcessConfig(args.config));
+  if (!args.state_dir.empty()) config.state_dir = args.state_dir;
+  if (!args.uplink_url.empty()) config.uplink_url = args.uplink_url;
+  if (!args.downlink_url.empty()) config.downlink_url = args.downlink_url;
+  config.node.software_version = FLEETMAP_VERSION;
+  // Acknowledged tiles are kept only by a live run with a state folder: a replay sends no
+  // acknowledgement.
+  if (!config.state_dir.empty() && args.replay.empty())
+    config.node.spool_dir = config.state_dir + "/incoming";
+  FLEETMAP_RETURN_IF_ERROR(config.Validate());
+  return config;
+}
+
+core::Result<std::unique_ptr<AggregatorNode>> MakeNode(const Args& args,
+                                                       const AggregatorProcessConfig& config,
+                                                       Publisher* publisher, double now_s) {
+  auto loaded = core::LoadMapServerMap(args.map);
+  if (!loaded.ok()) return loaded.status();
+  aggregator::RestoreReport restore;
+  auto aggregator = config.state_dir.empty()
+                        ? aggregator::Aggregator::Create(std::move(loaded->grid), config.aggregator)
+                        : aggregator::Aggregator::Open(std::move(loaded->grid), config.aggregator,
+                                                       config.state_dir, &restore);
+  if (!aggregator.ok()) return aggregator.status();
+  if (!args.quiet && !config.state_dir.empty()) {
+    std::fprintf(stderr,
+                 "fleetmap-aggregator: state %s: version %llu (snapshot %s, %d journal "
+                 "records%s)\n",
+                 config.state_dir.c_str(), (unsigned long long)aggregator->store().version(),
+                 restore.snapshot_found ? "found" : "none", restore.journal_records,
+                 restore.torn_tail_dropped ? ", a torn last record dropped" : "");
+  }
+  return AggregatorNode::Create(std::move(aggregator).value(), config.node, publisher, StderrLog(),
+                                now_s);
+}
+
+int Finish(const Args& args, const AggregatorProcessConfig& config, AggregatorNode& node) {
+  int rc = 0;
+  if (!config.state_dir.empty()) {
+    const core::Status s = node.Snapshot();
+    if (!s.ok()) std::fprintf(stderr, "fleetmap-aggregator: snapshot: %s\n", s.ToString().c_str());
+  }
+  if (!args.final_map.empty()) {
+    const auto& map = node.aggregator().store().current_map();
+    std::error_code ec;
+    const auto folder = std::filesystem::path(args.final_map).parent_path();
+    if (!folder.empty()) std::filesystem::create_directories(folder, ec);
+    core::Status s = core::SaveMapServerMap(map, args.final_map);
+    if (s.ok()) {
+      s = core::RenderGridToPng(
+          map, std::filesystem::path(args.final_map).replace_extension(".png").string());
+    }
+    if (!s.ok()) {
+      std::fprintf(stderr, "fleetmap-aggregator: --final-map: %s\n", s.ToString().c_str());
+      rc = 1;
+    }
+  }
+  if (!args.quiet) {
+    for (const auto& [channel, bytes] : node.largest_messages())
+      std::fprintf(stderr, "fleetmap-aggregator: largest %s message %zu B\n", channel.c_str(),
+                   bytes);
+  }
+  std::printf("%s\n", node.FinalLine().c_str());
+  std::fflush(stdout);
+  return rc;
+}
+
+void Progress(const AggregatorNode& node, double elapsed_s) {
+  const NodeCounters& c = node.counters();
+  std::fprintf(stderr,
+               "fleetmap-aggregator: %.0f s: version %llu, merged %lld, rejected %lld, "
+               "tiles %lld, incomplete maps %zu, requests %lld, state %s\n",
+               elapsed_s, (unsigned long long)node.aggregator().store().version(),
+               (long long)c.maps_merged, (long long)c.maps_rejected, (long long)c.tiles_received,
+               node.incomplete_maps(), (long long)c.requests, node.state().c_str());
+}
+
+int RunReplay(const Args& args, const AggregatorProcessConfig& config) {
+  auto node = MakeNode(args, config, nullptr, 0.0);
+  if (!node.ok()) {
+    std::fprintf(stderr, "fleetmap-aggregator: %s\n", node.status().ToString().c_str());
+    return 1;
+  }
+  auto stats = ReplayLogs(args.replay, **node, &g_stop);
+  if (!stats.ok()) {
+    std::fprintf(stderr, "fleetmap-aggregator: --replay: %s\n", stats.status().ToString().c_str());
+    return 1;
+  }
+  if (!args.quiet) {
+    std::fprintf(stderr,
+                 "fleetmap-aggregator: replayed %lld uplink messages over %.1f s of log (%lld "
+                 "other events skipped)\n",
+                 (long long)stats->fed, stats->last_s - stats->first_s, (long long)stats->skipped);
+  }
+  return Finish(args, config, **node);
+}
+
+int RunLive(const Args& args, const AggregatorProcessConfig& config) {
+  auto links = LcmLinks::Open(config.uplink_url, config.downlink_url);
+  if (!links.ok()) {
+    std::fprintf(stderr, "fleetmap-aggregator: %s\n", links.status().ToString().c_str());
+    return 1;
+  }
+  const double start_s = WallClockS();
+  auto node = MakeNode(args, config, links->get(), start_s);
+  if (!node.ok()) {
+    std::fprintf(stderr, "fleetmap-aggregator: %s\n", node.status().ToString().c_str());
+    return 1;
+  }
+  (*links)->Bind(node->get());
+  if (!args.quiet) {
+    std::fprintf(stderr, "fleetmap-aggregator: version %llu, listening on %s, answering on %s\n",
+                 (unsigned long long)(*node)->aggregator().store().version(),
+                 config.uplink_url.c_str(), config.downlink_url.c_str());
+  }
+  double next_progress_s = start_s + 5.0;
+  int64_t last_tiles = -1;
+  while (!g_stop) {
+    if ((*links)->Poll(100) < 0 && !g_stop) {
+      std::fprintf(stderr, "fleetmap-aggregator: LCM receive failed on %s\n",
+                   config.uplink_url.c_str());
+      break;
+    }
+    const double now_s = WallClockS();
+    (*node)->Tick(now_s);
+    if (args.duration_s >= 0 && now_s - start_s >= args.duration_s) break;
+    if (!args.quiet && now_s >= next_progress_s) {
+      if ((*node)->counters().tiles_received != last_tiles) Progress(**node, now_s - start_s);
+      last_tiles = (*node)->counters().tiles_received;
+      next_progress_s = now_s + 5.0;
+    }
+  }
+  return Finish(args, config, **node);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (arg == "--version") {
+      std::printf("fleetmap-aggregator %s\n", FLEETMAP_VERSION);
+      return 0;
+    }
+  }
+  Args args;
+  if (!Parse(argc, argv, args)) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  auto config = Configure(args);
+  if (!config.ok()) {
+    std::fprintf(stderr, "fleetmap-aggregator: %s\n", config.status().ToString().c_str());
+    return 1;
+  }
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  return args.replay.empty() ? RunLive(args, *config) : RunReplay(args, *config);
+}

@@ -1,0 +1,43 @@
+// The aggregator's two LCM links: it receives on the uplink (TEMPMAP_.*, MAP_REQUEST) and
+// sends on the downlink. Subscriptions are raw: the node decodes inside (lcmtypes::Decode),
+// because LCM's typed subscribe throws out of the handler on malformed data
+// (../shared/LCM_NOTES.md). Nothing subscribes on the downlink, so LCM opens no receive
+// socket there and our own messages are not read back.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+#include <memory>
+#include <string>
+
+#include "aggregator/node/aggregator_node.h"
+
+namespace fleetmap::aggregator::node {
+
+class LcmLinks : public Publisher {
+ public:
+  // Opens both links. The error names the URL and says how to get a multicast route.
+  static core::Result<std::unique_ptr<LcmLinks>> Open(const std::string& uplink_url,
+                                                      const std::string& downlink_url);
+
+  // Subscribes `node` (which outlives these links) to the uplink channels; every message
+  // is handed over with the wall clock as its receive time.
+  void Bind(AggregatorNode* node);
+  // Handles what arrives within timeout_ms: > 0 handled, 0 timed out, < 0 error.
+  int Poll(int timeout_ms);
+
+  bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override;
+
+ private:
+  LcmLinks(const std::string& uplink_url, const std::string& downlink_url)
+      : uplink_(uplink_url), downlink_(downlink_url) {}
+  void OnUplink(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+
+  lcm::LCM uplink_;
+  lcm::LCM downlink_;
+  AggregatorNode* node_ = nullptr;
+};
+
+// Seconds since the Unix epoch, the time base of every utime on the wire.
+double WallClockS();
+
+}  // namespace fleetmap::aggregator::node

@@ -1,0 +1,46 @@
+// Every setting of the aggregator node, with its default and unit. The process fills them
+// from its YAML file and flags (node_config.h); docs/aggregator_process.md lists them in
+// this order.
+#pragma once
+
+#include <string>
+
+#include "core/temp_map_tiles.h"
+
+namespace fleetmap::aggregator::node {
+
+struct AggregatorNodeOptions {
+  // An incomplete temporary map gets a PENDING acknowledgement (the tiles received so far)
+  // at most this often, s > 0, the first this long after its first tile: its other tiles
+  // usually follow in the same burst, and the vehicle resends after 1 s by default.
+  double pending_ack_interval_s = 0.5;
+  // Keyframes asked for by MAP_REQUEST are coalesced: at most one per this, s > 0.
+  double keyframe_min_interval_s = 0.5;
+  // A keyframe is sent unasked this often so that a vehicle that missed everything catches
+  // up, s >= 0 (0: never).
+  double keyframe_period_s = 10.0;
+  double status_period_s = 1.0;  // STATUS_aggregator period, s > 0
+  // An incomplete map that received no tile for this long is dropped, s > 0. A live vehicle
+  // resends at least every max_resend_s (16 s by default).
+  double pending_map_timeout_s = 600.0;
+  // A message the node publishes larger than this is counted (oversize_messages) and
+  // logged, bytes >= 1024: one lost UDP packet loses a whole message, so they stay small.
+  int max_message_bytes = 16384;
+  int max_report_matches = 64;  // line pairs listed in a MERGE_REPORT at most, >= 0
+  // Rejected (vehicle, sequence) remembered to answer resends with DUPLICATE, >= 1. Merged
+  // ones are always remembered: the current map's history holds them.
+  int max_remembered_rejections = 10000;
+  // Maps whose journal write failed (a full disk), kept to merge when the vehicle resends,
+  // >= 1.
+  int max_retry_maps = 32;
+  core::AssemblerOptions assembler;  // bounds on temporary maps being received
+  // Where tiles of incomplete maps are kept once acknowledged (PENDING), so that a restarted
+  // aggregator still has them: the vehicle never resends a tile it saw acknowledged. Empty:
+  // memory only. The process uses <state-dir>/incoming.
+  std::string spool_dir;
+  std::string process_name = "aggregator";   // STATUS_<process_name>
+  std::string software_version = "unknown";  // in STATUS
+  core::Status Validate() const;
+};
+
+}  // namespace fleetmap::aggregator::node

@@ -1,0 +1,153 @@
+// The node's small parts: configuration file, tile spool, map hash, request coalescing.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "aggregator/node/map_hash.h"
+#include "aggregator/node/node_config.h"
+#include "aggregator/node/request_queue.h"
+#include "aggregator/node/tile_spool.h"
+#include "tests/aggregator/test_files.h"
+#include "tests/aggregator/test_hall.h"
+
+namespace fleetmap::aggregator::node {
+namespace {
+
+TEST(AggregatorNodeConfigTest, EmptyFileGivesTheDefaults) {
+  auto c = ParseProcessConfig("{}", "agg.yaml");
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_EQ(c->uplink_url, "udpm://239.255.76.67:7667?ttl=0");
+  EXPECT_EQ(c->downlink_url, "udpm://239.255.76.68:7668?ttl=0");
+  EXPECT_TRUE(c->state_dir.empty());
+  EXPECT_EQ(c->node.pending_ack_interval_s, 0.5);
+  EXPECT_EQ(c->node.keyframe_period_s, 10.0);
+  EXPECT_EQ(c->aggregator.merge.confirmations, 2);
+}
+
+TEST(AggregatorNodeConfigTest, KeysAreReadIntoTheirStructs) {
+  auto c = ParseProcessConfig(R"(
+uplink_url: "udpm://239.255.1.1:7000?ttl=1"
+state_dir: state
+node: {keyframe_period_s: 0, status_period_s: 2.5, max_report_matches: 8}
+assembler: {max_pending_maps: 4, max_tiles: 100}
+aggregator:
+  merge: {confirmations: 1, confirm_min_gap_s: 5}
+  store: {retained_deltas: 3}
+  persistence: {snapshot_every_merges: 7}
+)",
+                              "/etc/fleetmap/agg.yaml");
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_EQ(c->uplink_url, "udpm://239.255.1.1:7000?ttl=1");
+  EXPECT_EQ(c->state_dir, "/etc/fleetmap/state");  // relative to the file
+  EXPECT_EQ(c->node.keyframe_period_s, 0.0);
+  EXPECT_EQ(c->node.status_period_s, 2.5);
+  EXPECT_EQ(c->node.max_report_matches, 8);
+  EXPECT_EQ(c->node.assembler.max_pending_maps, 4);
+  EXPECT_EQ(c->node.assembler.max_tiles, 100);
+  EXPECT_EQ(c->aggregator.merge.confirmations, 1);
+  EXPECT_EQ(c->aggregator.merge.confirm_min_gap_s, 5.0);
+  EXPECT_EQ(c->aggregator.store.retained_deltas, 3);
+  EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges, 7);
+}
+
+TEST(AggregatorNodeConfigTest, MistakesNameTheFieldAndTheLine) {
+  auto typo = ParseProcessConfig("node:\n  keyframe_period: 3\n", "agg.yaml");
+  ASSERT_FALSE(typo.ok());
+  EXPECT_NE(typo.status().message().find("agg.yaml:2: node.keyframe_period: unknown key"),
+            std::string::npos)
+      << typo.status().ToString();
+  auto bad = ParseProcessConfig("node: {status_period_s: -1}", "agg.yaml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("node.status_period_s"), std::string::npos);
+  auto type = ParseProcessConfig("assembler: {max_tiles: lots}", "agg.yaml");
+  ASSERT_FALSE(type.ok());
+  EXPECT_NE(type.status().message().find("assembler.max_tiles"), std::string::npos);
+  auto nested = ParseProcessConfig("aggregator: {merge: {confirmation: 1}}", "agg.yaml");
+  ASSERT_FALSE(nested.ok());
+  EXPECT_NE(nested.status().message().find("aggregator.merge.confirmation: unknown key"),
+            std::string::npos);
+  EXPECT_FALSE(ParseProcessConfig("assembler: {max_tiles: 40000}", "agg.yaml").ok());
+  EXPECT_FALSE(ParseProcessConfig("[1, 2]", "agg.yaml").ok());
+  EXPECT_FALSE(LoadProcessConfig("/nonexistent/agg.yaml").ok());
+}
+
+TEST(AggregatorNodeTileSpoolTest, KeptTilesComeBackAndGoWithTheirMap) {
+  aggregator::testing::ScratchFolder folder;
+  const std::string dir = folder.File("incoming");
+  const MapKey a{"v 1/../x", 3}, b{"v2", -4};  // ids are hex-encoded into file names
+  {
+    auto spool = TileSpool::Open(dir);
+    ASSERT_TRUE(spool.ok()) << spool.status().ToString();
+    ASSERT_TRUE(spool->Save(a, 0, {1, 2, 3}).ok());
+    ASSERT_TRUE(spool->Save(a, 7, {4}).ok());
+    ASSERT_TRUE(spool->Save(b, 1, {5, 6}).ok());
+    EXPECT_TRUE(spool->Has(a, 7));
+    EXPECT_FALSE(spool->Has(a, 1));
+  }
+  std::ofstream(dir + "/notes.txt") << "not ours";
+  auto spool = TileSpool::Open(dir);
+  int bad = 0;
+  const auto tiles = spool->LoadAll(&bad);
+  EXPECT_EQ(bad, 0);
+  ASSERT_EQ(tiles.size(), 3u);
+  EXPECT_EQ(tiles[0].key, a);
+  EXPECT_EQ(tiles[0].index, 0);
+  EXPECT_EQ(tiles[0].bytes, (std::vector<uint8_t>{1, 2, 3}));
+  EXPECT_EQ(tiles[1].index, 7);
+  EXPECT_EQ(tiles[2].key, b);
+  spool->Remove(a);
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.path() != "";
+  EXPECT_EQ(files, 2);  // b's tile and the foreign file
+  EXPECT_FALSE(TileSpool().enabled());
+  EXPECT_FALSE(TileSpool().Save(a, 0, {1}).ok());
+}
+
+TEST(AggregatorNodeTileSpoolTest, AnUnusableFolderIsAnError) {
+  aggregator::testing::ScratchFolder folder;
+  std::ofstream(folder.File("file")) << "x";
+  EXPECT_FALSE(TileSpool::Open(folder.File("file")).ok());
+}
+
+TEST(AggregatorNodeMapHashTest, EqualMapsEqualHashesAnyCellOrGeometryChangesIt) {
+  const core::OccupancyGrid hall = aggregator::testing::HallMap();
+  const uint64_t h = MapHash(hall);
+  EXPECT_EQ(MapHash(aggregator::testing::HallMap()), h);
+  core::OccupancyGrid cell = hall;
+  cell.SetState({200, 200}, core::CellState::kOccupied);
+  EXPECT_NE(MapHash(cell), h);
+  core::OccupancyGrid moved(core::GridGeometry(0.05, 400, 400, core::Pose2(0.05, 0, 0)));
+  moved.mutable_cells() = hall.cells();
+  EXPECT_NE(MapHash(moved), h);
+  EXPECT_EQ(HashHex(0x1234), "0000000000001234");
+  EXPECT_EQ(FinalLine(3, 0xabc, 2, 1),
+            "aggregator: version 3 map_hash 0000000000000abc merged 2 rejected 1");
+}
+
+TEST(AggregatorNodeRequestQueueTest, DeltasFromTheOldestVersionKeyframesAtMostOncePerInterval) {
+  RequestQueue q(0.5);
+  q.AddDeltas(5);
+  q.AddDeltas(3);
+  q.AddKeyframe({4, 2});
+  q.AddKeyframe({2, 9});
+  RequestPlan p = q.Take(10.0);
+  EXPECT_EQ(p.deltas_from, 3u);
+  EXPECT_FALSE(p.full_keyframe);
+  EXPECT_EQ(p.keyframe_tiles, (std::vector<int32_t>{2, 4, 9}));
+  q.AddKeyframe({});
+  p = q.Take(10.2);
+  EXPECT_FALSE(p.keyframe());  // waits for the interval
+  EXPECT_FALSE(p.deltas_from.has_value());
+  q.AddKeyframe({1});  // a whole one is waiting: it covers any tile
+  p = q.Take(10.5);
+  EXPECT_TRUE(p.full_keyframe);
+  EXPECT_TRUE(p.keyframe_tiles.empty());
+  q.AddKeyframe({});
+  q.WholeKeyframeSent(11.0);  // the periodic keyframe answered it
+  EXPECT_FALSE(q.keyframe_waiting());
+  EXPECT_FALSE(q.Take(12.0).keyframe());
+}
+
+}  // namespace
+}  // namespace fleetmap::aggregator::node
