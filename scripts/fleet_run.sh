@@ -106,7 +106,8 @@ trap 'echo "fleet_run.sh: interrupted" >&2; exit 130' INT TERM
 epoch=$(date +%s)
 echo "$epoch" >"$out/logs/epoch.txt"  # fleetmap-eval --epoch: message stamps - epoch = simulated s
 for group in sensor uplink downlink; do
-  "${run[@]}" lcm-logger -q -f --lcm-url="${!group}" "$out/logs/$group.lcmlog" &
+  "${run[@]}" lcm-logger -f --lcm-url="${!group}" "$out/logs/$group.lcmlog" \
+    >"$out/logs/logger_$group.txt" 2>&1 &
   loggers+=($!)
 done
 "${run[@]}" "$bin/fleetmap-aggregator" --map "$static_map" --state-dir "$out/state/aggregator" \

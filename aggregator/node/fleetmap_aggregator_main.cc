@@ -1,10 +1,12 @@
 // fleetmap-aggregator: the server of the fleet. Receives temporary maps over LCM, merges
 // them into the versioned current map and sends the changes back; or replays LCM logs into
 // the same code. See --help and docs/aggregator_process.md.
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "aggregator/node/aggregator_node.h"
@@ -235,6 +237,9 @@ int RunLive(const Args& args, const AggregatorProcessConfig& config) {
       next_progress_s = now_s + 5.0;
     }
   }
+  // What is still queued (a last delta, acks) goes out before the final line: up to 2 s.
+  for (int i = 0; i < 400 && (*links)->Flush() > 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   return Finish(args, config, **node);
 }
 

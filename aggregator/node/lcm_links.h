@@ -5,11 +5,13 @@
 // socket there and our own messages are not read back.
 #pragma once
 
+#include <deque>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <string>
 
 #include "aggregator/node/aggregator_node.h"
+#include "core/send_pacer.h"
 
 namespace fleetmap::aggregator::node {
 
@@ -22,8 +24,14 @@ class LcmLinks : public Publisher {
   // Subscribes `node` (which outlives these links) to the uplink channels; every message
   // is handed over with the wall clock as its receive time.
   void Bind(AggregatorNode* node);
-  // Handles what arrives within timeout_ms: > 0 handled, 0 timed out, < 0 error.
+  // Sends what the pacer allows of the queued messages, then handles what arrives within
+  // timeout_ms (shorter while messages wait): > 0 handled, 0 timed out, < 0 error.
   int Poll(int timeout_ms);
+  // Sends what the pacer allows now; returns how many messages still wait.
+  size_t Flush();
+  // Queues a message; it goes out paced (core/send_pacer.h: a keyframe is a burst of ~100
+  // tiles, which slow readers such as lcm-logger would otherwise lose). False when the queue
+  // is full (the message is dropped).
 
   bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override;
 
@@ -32,8 +40,15 @@ class LcmLinks : public Publisher {
       : uplink_(uplink_url), downlink_(downlink_url) {}
   void OnUplink(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
 
+  struct Outgoing {
+    Link link;
+    std::string channel;
+    std::vector<uint8_t> bytes;
+  };
   lcm::LCM uplink_;
   lcm::LCM downlink_;
+  std::deque<Outgoing> queue_;
+  core::SendPacer pacer_;
   AggregatorNode* node_ = nullptr;
 };
 
