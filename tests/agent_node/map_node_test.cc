@@ -119,5 +119,46 @@ TEST(MapNodeTest, FromTheStaticMapItCatchesUpWithDeltasAndFollowsTheHeartbeat) {
   EXPECT_EQ(out.Count("MAP_REQUEST", mark), 0u);
 }
 
+TEST(MapNodeTest, AnAggregatorThatRestartedWithoutItsStateIsFollowedAgain) {
+  const sim::World world = testing::RoomWorld();
+  MemoryPublisher out;
+  auto node = AgentNode::Create(testing::RoomOptions(world), &out, nullptr, world.static_map(), 0.0)
+                  .value();
+  const core::OccupancyGrid v0 = world.static_map(), v1 = WithBox(v0, 20, 100),
+                            v2 = WithBox(v1, 150, 100);
+  FeedAll(*node, "MAP_DELTA", testing::DeltaMessages(v0, v1, 0), 0.0);
+  FeedAll(*node, "MAP_DELTA", testing::DeltaMessages(v1, v2, 1), 0.0);
+  node->Tick(0.0);
+  ASSERT_EQ(node->map_version(), 2);
+  // The aggregator comes back at version 0: one heartbeat behind is not enough ...
+  fleetmap::status_t heartbeat;
+  heartbeat.process = "aggregator";
+  heartbeat.map_version = 0;
+  heartbeat.num_counters = 0;
+  size_t mark = out.sent.size();
+  for (double t = 1.0; t < 2.9; t += 0.5) {
+    testing::FeedMessage(*node, Link::kDownlink, "STATUS_aggregator", heartbeat, t);
+    node->Tick(t);
+  }
+  EXPECT_EQ(out.Count("MAP_REQUEST", mark), 0u);
+  // ... two request periods are: the node asks for the whole map and keeps localizing.
+  testing::FeedMessage(*node, Link::kDownlink, "STATUS_aggregator", heartbeat, 3.0);
+  node->Tick(3.0);
+  const auto requests = out.Decoded<fleetmap::map_request_t>("MAP_REQUEST", mark);
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].have_version, -1);
+  EXPECT_EQ(testing::Counter(*node, "map_resets"), 1);
+  EXPECT_EQ(node->state(), "running");
+  // Its new history: version 1 is another change than ours was.
+  const core::OccupancyGrid other = WithBox(v0, 100, 20);
+  FeedAll(*node, "MAP_KEYFRAME", testing::KeyframeMessages(other, 1), 3.5);
+  mark = out.sent.size();
+  testing::DriveNode(world, *node, 1.0);
+  EXPECT_EQ(node->map_version(), 1);
+  EXPECT_EQ(node->map().map().state({105, 25}), core::CellState::kOccupied);
+  EXPECT_EQ(node->map().map().state({25, 105}), core::CellState::kFree);
+  for (int32_t v : PoseVersions(out, mark)) EXPECT_EQ(v, 1);
+}
+
 }  // namespace
 }  // namespace fleetmap::vehicle_agent::node

@@ -27,6 +27,7 @@ NamedCounters CollectCounters(const AgentNodeCounters& c, const InputQueue& queu
       {"map_tiles_stale", m.stale_tiles},
       {"map_tiles_refused", m.refused_tiles},
       {"map_tiles_wrong_geometry", m.wrong_geometry_tiles},
+      {"map_resets", m.resets},
       {"map_swaps_failed", c.map_swaps_failed},
       {"messages", c.messages},
       {"malformed_messages", c.malformed_messages},

@@ -254,7 +254,9 @@ void AgentNode::Tick(double now_s) {
 
 void AgentNode::ApplyMap() {
   map_dirty_ = false;
-  if (!follower_.has_map() || follower_.version() == applied_version_) return;
+  // Dirty means a tile completed a version (or the static map came in): after an aggregator
+  // restart a new map may carry a version number we held before.
+  if (!follower_.has_map()) return;
   const core::Status s = pipeline_.SetMap(follower_.map(), follower_.version());
   if (!s.ok()) {
     ++counters_.map_swaps_failed;
@@ -374,7 +376,14 @@ void AgentNode::SendTiles(double now_s) {
 }
 
 void AgentNode::SendMapRequest(double now_s) {
-  if (const std::optional<int32_t> have = follower_.RequestDue(now_s)) {
+  const int64_t resets = follower_.counters().resets;
+  const std::optional<int32_t> have = follower_.RequestDue(now_s);
+  if (follower_.counters().resets != resets) {
+    log_.Warning(
+        "the aggregator's map versions went back below " + std::to_string(applied_version_) +
+        " (restarted without its state?): asking for its map, localizing on ours meanwhile");
+  }
+  if (have) {
     Send(Link::kUplink, lcmtypes::kMapRequestChannel,
          MapRequestMessage(options_.pipeline.vehicle_id, *have, Utime(now_s)));
   }

@@ -66,6 +66,9 @@ core::Result<bool> MapFollower::OnDeltaTile(const core::DeltaTile& tile) {
 
 void MapFollower::OnRemoteVersion(int32_t version, double now_s) {
   if (version > remote_version_ && version > replica_.version()) remote_ahead_since_s_ = now_s;
+  const bool behind = replica_.has_map() && version < replica_.version();
+  if (behind && !remote_behind_) remote_behind_since_s_ = now_s;
+  remote_behind_ = behind;
   remote_version_ = version;
 }
 
@@ -77,6 +80,14 @@ bool MapFollower::WantsRequest(double now_s) const {
 }
 
 std::optional<int32_t> MapFollower::RequestDue(double now_s) {
+  // Two periods, so that a heartbeat overtaken by the delta it announces is no restart.
+  if (remote_behind_ && now_s - remote_behind_since_s_ >= 2 * options_.request_period_s) {
+    replica_ = core::MapReplica(options_.max_buffered_versions);
+    remote_behind_ = false;
+    asked_once_ = false;
+    last_request_s_ = -std::numeric_limits<double>::infinity();
+    ++counters_.resets;
+  }
   if (!WantsRequest(now_s)) return std::nullopt;
   // A keyframe is a hundred tiles: ask once per period, whatever triggered it.
   if (now_s - last_request_s_ < options_.request_period_s) return std::nullopt;

@@ -5,7 +5,10 @@
 //   - without a map: a request with have_version -1 every request period until a keyframe
 //     is complete;
 //   - a version gap (a delta for a version after one we missed), or the aggregator's
-//     heartbeat showing a newer version for a whole period: a request with our version.
+//     heartbeat showing a newer version for a whole period: a request with our version;
+//   - the heartbeat showing an older version than ours for two periods: the aggregator
+//     restarted without its state and numbers versions anew. The replica is dropped and the
+//     aggregator's map asked for (have_version -1); localization keeps its map until then.
 // Keyframes of another map geometry are refused: they belong to another site's map. Free of
 // LCM: tiles come in as core types and time is passed in.
 #pragma once
@@ -33,6 +36,7 @@ struct MapFollowerCounters {
   int64_t stale_tiles = 0;           // tiles of versions we already hold (normal after a keyframe)
   int64_t wrong_geometry_tiles = 0;  // keyframe tiles of another map geometry: refused
   int64_t refused_tiles = 0;         // tiles the replica refused (corrupt, inconsistent, too many)
+  int64_t resets = 0;                // the aggregator's versions went back: replica dropped
 };
 
 class MapFollower {
@@ -49,6 +53,8 @@ class MapFollower {
   void OnRemoteVersion(int32_t version, double now_s);
 
   // have_version for a MAP_REQUEST to send now (-1: no map), or nothing. Counts the request.
+  // Drops the replica first when the heartbeat says the aggregator's versions went back.
+  // Drops the replica first when the heartbeat says the aggregator's versions went back.
   std::optional<int32_t> RequestDue(double now_s);
 
   bool has_map() const { return replica_.has_map(); }
@@ -67,7 +73,9 @@ class MapFollower {
   bool asked_once_ = false;
   double last_request_s_ = -std::numeric_limits<double>::infinity();
   int32_t remote_version_ = -1;
-  double remote_ahead_since_s_ = 0.0;  // when the heartbeat first showed a newer version
+  double remote_ahead_since_s_ = 0.0;   // when the heartbeat first showed a newer version
+  bool remote_behind_ = false;          // the heartbeat shows an older version than ours ...
+  double remote_behind_since_s_ = 0.0;  // ... since then
   MapFollowerCounters counters_;
 };
 
