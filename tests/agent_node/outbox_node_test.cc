@@ -148,7 +148,7 @@ TEST_F(OutboxNodeTest, AMapTheAgentBuiltIsSentAgainAfterARestartAndNumberingGoes
   auto node = AgentNode::Create(testing::RoomOptions(world, dir_.path()), &out, nullptr,
                                 world.static_map(), 500.0)
                   .value();
-  node->Tick(500.0);
+  for (double t = 500.0; t < 500.5; t += 0.05) node->Tick(t);
   std::set<int32_t> resent;
   for (const auto& t : out.Decoded<fleetmap::tempmap_tile_t>("TEMPMAP_v1"))
     resent.insert(t.tempmap_seq);
@@ -165,6 +165,24 @@ TEST_F(OutboxNodeTest, AMapTheAgentBuiltIsSentAgainAfterARestartAndNumberingGoes
   third->Tick(600.0);
   EXPECT_EQ(third_out.Count("TEMPMAP_v1"), 0u);
   EXPECT_EQ(third->pipeline().options().first_sequence, *first_run.rbegin() + 1);
+}
+
+TEST_F(OutboxNodeTest, TileBurstsArePacedAndAcknowledgedTilesLeaveTheQueue) {
+  auto node = NodeWithPendingMap({4, 5, 6});  // 36 tiles due at once
+  node->Tick(100.0);
+  EXPECT_EQ(out_.Count("TEMPMAP_v1"), 16u);  // the pacer's burst
+  EXPECT_EQ(testing::Counter(*node, "tiles_queued"), 20);
+  // The aggregator already has map 6 (merged, say, before a restart of the agent).
+  SendAck(*node, MakeAck(6, fleetmap::tempmap_ack_t::DUPLICATE, {}), 100.0);
+  EXPECT_EQ(testing::Counter(*node, "tiles_queued"), 8);
+  node->Tick(100.01);  // 400 tiles/s: 4 more
+  EXPECT_EQ(out_.Count("TEMPMAP_v1"), 20u);
+  for (double t = 100.02; t < 100.9; t += 0.01) node->Tick(t);
+  EXPECT_EQ(out_.Count("TEMPMAP_v1"), 24u);  // maps 4 and 5 once each, nothing of 6 twice
+  std::set<std::pair<int32_t, int32_t>> sent;
+  for (const auto& t : out_.Decoded<fleetmap::tempmap_tile_t>("TEMPMAP_v1"))
+    EXPECT_TRUE(sent.insert({t.tempmap_seq, t.tile_index}).second);
+  EXPECT_EQ(testing::Counter(*node, "tiles_queued"), 0);
 }
 
 }  // namespace

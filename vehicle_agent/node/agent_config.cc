@@ -236,13 +236,15 @@ core::Status ReadOutbox(const YamlReader& r, const YAML::Node& n, OutboxOptions&
 
 core::Status ReadRates(const YamlReader& r, const YAML::Node& n, AgentConfig& c) {
   if (!n) return core::OkStatus();
-  FLEETMAP_RETURN_IF_ERROR(
-      CheckKeys(r, n, "rates",
-                {"status_period_s", "map_request_period_s", "max_queued_scans", "loop_wait_s"}));
+  FLEETMAP_RETURN_IF_ERROR(CheckKeys(r, n, "rates",
+                                     {"status_period_s", "map_request_period_s", "max_queued_scans",
+                                      "loop_wait_s", "uplink_tiles_per_s", "uplink_burst_tiles"}));
   READ_NUMBER(n, "status_period_s", "rates.", c.node.status_period_s);
   READ_NUMBER(n, "map_request_period_s", "rates.", c.node.map.request_period_s);
   READ_AS(int, n, "max_queued_scans", "rates.", c.node.queue.max_queued_scans);
   READ_NUMBER(n, "loop_wait_s", "rates.", c.loop_wait_s);
+  READ_NUMBER(n, "uplink_tiles_per_s", "rates.", c.node.uplink_pacer.rate_per_s);
+  READ_NUMBER(n, "uplink_burst_tiles", "rates.", c.node.uplink_pacer.burst);
   return core::OkStatus();
 }
 

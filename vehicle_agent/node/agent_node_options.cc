@@ -28,6 +28,7 @@ core::Status AgentNodeOptions::Validate() const {
     return core::InvalidArgument(
         "initial pose from the first external pose needs inputs.external_pose: true");
   if (!(status_period_s > 0.0)) return core::InvalidArgument("rates.status_period_s must be > 0");
+  FLEETMAP_RETURN_IF_ERROR(uplink_pacer.Validate().WithContext("rates.uplink_tiles_per_s/burst"));
   if (!std::isfinite(utime_offset_s)) return core::InvalidArgument("utime_offset_s is not finite");
   return core::OkStatus();
 }

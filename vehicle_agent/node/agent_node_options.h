@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/send_pacer.h"
 #include "vehicle_agent/agent_pipeline.h"
 #include "vehicle_agent/node/input_queue.h"
 #include "vehicle_agent/node/map_follower.h"
@@ -32,6 +33,9 @@ struct AgentNodeOptions {
   bool use_external_pose = false;  // EXTPOSE_<id> on the sensor link
   Link pose_link = Link::kUplink;  // where POSE_<id> and DIVERGENCE_<id> go (docs/channels.md)
   double status_period_s = 1.0;    // STATUS_agent_<id> period, s, > 0
+  // Temporary-map tiles leave at most at this rate (tiles/s) after a burst: a map of tens of
+  // tiles sent at once overflows slow readers (LCM queues 30 messages per subscription).
+  core::PacerOptions uplink_pacer;
   // Added to the node's clock (now_s) for the utime of the messages it sends, s: the process
   // passes a monotonic clock and sets this to wall clock minus monotonic clock.
   double utime_offset_s = 0.0;
