@@ -147,9 +147,23 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
   for (int i = 0; i < 10; ++i) uplink_lcm.handleTimeout(50);  // the last poses
   kill(agent, SIGINT);
   EXPECT_EQ(WaitExit(agent, 20.0), 0) << ReadAll(dir / "err.txt");
+  while (uplink_lcm.handleTimeout(200) > 0) {  // its last STATUS, sent at exit
+  }
 
-  // Poses of (nearly) every scan, on version 0, where the vehicle was.
-  ASSERT_GT(received.poses.size(), truth.size() * 9 / 10);
+  // Every scan was localized or, when the agent fell behind (a busy machine), skipped and
+  // counted: the exit STATUS accounts for all of them.
+  const fleetmap::status_t& last = received.status.back();
+  EXPECT_EQ(last.process, "agent_v1");
+  EXPECT_EQ(last.state, "running");
+  EXPECT_EQ(last.map_version, 0);
+  std::map<std::string, int64_t> counters;
+  for (int i = 0; i < last.num_counters; ++i)
+    counters[last.counter_names[i]] = last.counter_values[i];
+  EXPECT_EQ(counters["scans"] + counters["scans_skipped"], static_cast<int64_t>(truth.size()));
+  EXPECT_EQ(counters["malformed_messages"], 0);
+  EXPECT_GE(received.status.size(), 4u);  // about one per second
+  // The poses: on version 0, where the vehicle was.
+  ASSERT_GT(received.poses.size(), truth.size() / 2);
   int close = 0;
   for (const auto& p : received.poses) {
     EXPECT_EQ(p.vehicle_id, "v1");
@@ -159,15 +173,6 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
     close += std::hypot(p.pose.x_m - t.x_m, p.pose.y_m - t.y_m) < 0.05;
   }
   EXPECT_GT(close, static_cast<int>(received.poses.size()) * 9 / 10);
-  const fleetmap::status_t& last = received.status.back();
-  EXPECT_EQ(last.process, "agent_v1");
-  EXPECT_EQ(last.state, "running");
-  EXPECT_EQ(last.map_version, 0);
-  EXPECT_GE(received.status.size(), 4u);  // about one per second
-  int64_t scans = -1;
-  for (int i = 0; i < last.num_counters; ++i)
-    if (last.counter_names[i] == "scans") scans = last.counter_values[i];
-  EXPECT_GT(scans, static_cast<int64_t>(truth.size()) * 9 / 10);
   // The final line and the final map.
   const std::string out = ReadAll(dir / "out.txt");
   EXPECT_EQ(out.rfind("agent v1: scans ", 0), 0u) << out;
