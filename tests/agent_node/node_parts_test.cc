@@ -8,6 +8,7 @@
 #include "vehicle_agent/node/agent_node_options.h"
 #include "vehicle_agent/node/input_queue.h"
 #include "vehicle_agent/node/sequence_store.h"
+#include "vehicle_agent/node/tile_send_queue.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
@@ -80,6 +81,25 @@ TEST(AgentNodeOptionsTest, VehicleIdsMustBeSafeInChannelNames) {
   EXPECT_TRUE(o.Validate().ok());
   o.status_period_s = 0;
   EXPECT_FALSE(o.Validate().ok());
+}
+
+TEST(TileSendQueueTest, PacesBurstsQueuesEachTileOnceAndDropsAcknowledgedOnes) {
+  TileSendQueue q(core::PacerOptions{100.0, 4.0});
+  std::vector<core::TempMapTile> tiles(10);
+  for (int i = 0; i < 10; ++i) tiles[i].sequence = 7, tiles[i].index = i;
+  q.Add(tiles);
+  q.Add(tiles);  // due again before the first copies left
+  EXPECT_EQ(q.size(), 10u);
+  EXPECT_EQ(q.Take(1.0).size(), 4u);                        // the burst
+  EXPECT_EQ(q.Take(1.0).size(), 0u);                        // nothing more at once
+  EXPECT_EQ(q.Take(1.02).size(), 2u);                       // 100 per second
+  q.Drop(7, [](int32_t index) { return index % 2 == 0; });  // received: 6 and 8
+  const auto rest = q.Take(5.0, /*all=*/true);
+  ASSERT_EQ(rest.size(), 2u);
+  EXPECT_EQ(rest[0].index, 7);
+  EXPECT_EQ(rest[1].index, 9);
+  q.Add(tiles);  // the queue is empty: a resend queues every tile again
+  EXPECT_EQ(q.size(), 10u);
 }
 
 }  // namespace

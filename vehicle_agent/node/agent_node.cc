@@ -1,6 +1,7 @@
 #include "vehicle_agent/node/agent_node.h"
 
 #include <cmath>
+#include <set>
 
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "lcmtypes/convert.h"
@@ -58,7 +59,7 @@ AgentNode::AgentNode(AgentNodeOptions options, Publisher* publisher, LogSink log
       outbox_(options_.outbox),
       follower_(options_.map),
       queue_(options_.queue),
-      pacer_(options_.uplink_pacer),
+      sends_(options_.uplink_pacer),
       next_status_s_(now_s) {}
 
 std::vector<Subscription> AgentNode::Subscriptions() const {
@@ -192,7 +193,7 @@ void AgentNode::OnAck(const void* data, int size) {
   const bool finished = outbox_.pending() < pending_before;
   // Tiles still waiting for the pacer that the aggregator has, or no longer needs, stay here.
   const std::set<int32_t> have(received.begin(), received.end());
-  Unqueue(m->tempmap_seq, [&](int32_t index) { return finished || have.count(index) > 0; });
+  sends_.Drop(m->tempmap_seq, [&](int32_t index) { return finished || have.count(index) > 0; });
   if (!finished) return;  // PENDING, a repeated final ack, or a map not pending
   const std::string what = "temporary map " + std::to_string(m->tempmap_seq);
   switch (outcome) {
@@ -375,31 +376,10 @@ void AgentNode::PublishStep(const core::LaserScan& scan, const AgentStep& step) 
 }
 
 void AgentNode::SendTiles(double now_s, bool all) {
-  for (core::TempMapTile& tile : outbox_.Due(now_s)) {
-    // A resend that comes due while the first copy still waits is the same tile.
-    if (queued_.insert({tile.sequence, tile.index}).second) unsent_.push_back(std::move(tile));
-  }
+  sends_.Add(outbox_.Due(now_s));
   const std::string channel = lcmtypes::TempMapChannel(options_.pipeline.vehicle_id);
-  const size_t allowed = all ? unsent_.size() : static_cast<size_t>(pacer_.Allowed(now_s));
-  size_t sent = 0;
-  for (; sent < allowed && !unsent_.empty(); ++sent) {
-    const core::TempMapTile& tile = unsent_.front();
+  for (const core::TempMapTile& tile : sends_.Take(now_s, all))
     Send(Link::kUplink, channel, lcmtypes::ToMessage(tile, Utime(now_s)));
-    queued_.erase({tile.sequence, tile.index});
-    unsent_.pop_front();
-  }
-  pacer_.Sent(static_cast<int>(sent));
-}
-
-void AgentNode::Unqueue(int32_t sequence, const std::function<bool(int32_t index)>& drop) {
-  for (auto it = unsent_.begin(); it != unsent_.end();) {
-    if (it->sequence == sequence && drop(it->index)) {
-      queued_.erase({it->sequence, it->index});
-      it = unsent_.erase(it);
-    } else {
-      ++it;
-    }
-  }
 }
 
 void AgentNode::SendMapRequest(double now_s) {
@@ -433,7 +413,7 @@ NamedCounters AgentNode::AllCounters() const {
   NamedCounters out = CollectCounters(counters_, queue_, outbox_.counters(), follower_.counters(),
                                       pipeline_.localizer().counters());
   out.emplace_back("tempmaps_pending", static_cast<int64_t>(outbox_.pending()));
-  out.emplace_back("tiles_queued", static_cast<int64_t>(unsent_.size()));
+  out.emplace_back("tiles_queued", static_cast<int64_t>(sends_.size()));
   out.insert(out.end(), input_counters_.begin(), input_counters_.end());
   return out;
 }

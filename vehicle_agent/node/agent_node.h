@@ -10,11 +10,8 @@
 // counted, logged once per cause, and never stops the node.
 #pragma once
 
-#include <deque>
-#include <functional>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +20,7 @@
 #include "vehicle_agent/node/agent_node_options.h"
 #include "vehicle_agent/node/cause_log.h"
 #include "vehicle_agent/node/sequence_store.h"
+#include "vehicle_agent/node/tile_send_queue.h"
 
 namespace fleetmap::vehicle_agent::node {
 
@@ -87,7 +85,6 @@ class AgentNode {
   void Keep(const core::TempMap& map, double now_s);
   // Due tiles join the send queue; as many leave as the pacer allows (all of them: at exit).
   void SendTiles(double now_s, bool all = false);
-  void Unqueue(int32_t sequence, const std::function<bool(int32_t index)>& drop);
   void SendMapRequest(double now_s);
   void SendStatus(double now_s);
   void PublishStep(const core::LaserScan& scan, const AgentStep& step);
@@ -103,9 +100,7 @@ class AgentNode {
   TempMapOutbox outbox_;
   MapFollower follower_;
   InputQueue queue_;
-  core::SendPacer pacer_;
-  std::deque<core::TempMapTile> unsent_;          // due, waiting for the pacer
-  std::set<std::pair<int32_t, int32_t>> queued_;  // (sequence, index) of those
+  TileSendQueue sends_;
   bool map_dirty_ = false;  // the follower has a version the pipeline does not
   bool map_applied_ = false;
   int32_t applied_version_ = -1;
