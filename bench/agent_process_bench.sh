@@ -33,10 +33,11 @@ cleanup() {
 }
 trap cleanup EXIT
 
-read -r id x y theta < <("$build/bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | grep -v '^map ' | head -1)
+# `ID X Y THETA [MOUNT_X MOUNT_Y MOUNT_THETA]` (older simulators print no mount).
+read -r id x y theta mx my mtheta < <("$build/bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | grep -v '^map ' | head -1)
 map=$("$build/bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | sed -n 's/^map //p')
 "$build/bin/fleetmap-agent" --vehicle-id "$id" --map "$map" --initial-pose "$x,$y,$theta" \
-  --scanner-mount 0.3,0,0 --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
+  --scanner-mount "${mx:-0.3},${my:-0},${mtheta:-0}" --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
   --state-dir "$work/state" --quiet >"$work/agent.txt" 2>&1 &
 agent=$!
 sleep 1
