@@ -9,12 +9,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "core/file_io.h"
+#include "core/image_file.h"
 
 namespace fleetmap::core {
+
+// Weak: null unless the program links fleetmap_core_codecs (core/image_file.h says why).
+Result<DecodedImage> DecodeImageFile(const std::string& path) __attribute__((weak));
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -218,23 +221,6 @@ Status CheckPngSize(const std::string& path) {
   return OkStatus();
 }
 
-Result<cv::Mat> ReadWithOpenCv(const std::string& path) {
-  FLEETMAP_RETURN_IF_ERROR(CheckPngSize(path));
-  cv::Mat mat;
-  try {
-    mat = cv::imread(path, cv::IMREAD_UNCHANGED);
-  } catch (const std::exception& e) {  // cv::Exception, std::bad_alloc
-    return InvalidArgument(path + ": OpenCV cannot read the image: " + e.what());
-  }
-  if (mat.empty()) return InvalidArgument(path + ": not an image OpenCV can decode");
-  if (mat.depth() != CV_8U) return Unimplemented(path + ": only 8-bit images are supported");
-  if (mat.channels() != 1 && mat.channels() != 3 && mat.channels() != 4) {
-    return Unimplemented(path + ": images need 1, 3 or 4 channels, not " +
-                         std::to_string(mat.channels()));
-  }
-  return mat;
-}
-
 // map_server's shade: the mean of the colour channels, alpha averaged in only in trinary mode.
 double ChannelMean(const uint8_t* px, int channels, MapMode mode) {
   if (channels == 1) return px[0];
@@ -244,15 +230,22 @@ double ChannelMean(const uint8_t* px, int channels, MapMode mode) {
   return static_cast<double>(sum) / averaged;
 }
 
-Result<OccupancyGrid> GridFromOpenCv(const MapMetadata& m, const LogOddsLimits& limits) {
-  Result<cv::Mat> mat = ReadWithOpenCv(m.image_path);
-  if (!mat.ok()) return mat.status();
-  Result<OccupancyGrid> grid = MakeGrid(m, mat->cols, mat->rows, limits);
+Result<OccupancyGrid> GridFromImageFile(const MapMetadata& m, const LogOddsLimits& limits) {
+  if (DecodeImageFile == nullptr) {
+    return Unimplemented(m.image_path +
+                         ": this program reads PGM map images only (other formats need "
+                         "fleetmap_core_codecs, left out to keep it small): convert the image "
+                         "to PGM, e.g. with fleetmap-maptool");
+  }
+  FLEETMAP_RETURN_IF_ERROR(CheckPngSize(m.image_path));
+  Result<DecodedImage> image = DecodeImageFile(m.image_path);
+  if (!image.ok()) return image.status();
+  Result<OccupancyGrid> grid = MakeGrid(m, image->width, image->height, limits);
   if (!grid.ok()) return grid;
-  const int channels = mat->channels();
-  for (int row = 0; row < mat->rows; ++row) {
-    const uint8_t* px = mat->ptr<uint8_t>(row);
-    for (int x = 0; x < mat->cols; ++x, px += channels) {
+  const int channels = image->channels;
+  const uint8_t* px = image->pixels.data();
+  for (int row = 0; row < image->height; ++row) {
+    for (int x = 0; x < image->width; ++x, px += channels) {
       const bool opaque = channels != 4 || px[3] == 255;
       SetPixel(*grid, x, row, PixelLogOdds(ChannelMean(px, channels, m.mode), opaque, m, *grid));
     }
@@ -407,7 +400,7 @@ Result<LoadedMap> LoadMapServerMap(const std::string& yaml_path, const MapLoadOp
     Result<GrayImage> image = ReadPgmFile(m->image_path, options.pgm);
     grid = image.ok() ? GridFromGray(*image, *m, options.limits) : image.status();
   } else {
-    grid = GridFromOpenCv(*m, options.limits);
+    grid = GridFromImageFile(*m, options.limits);
   }
   if (!grid.ok()) return grid.status().WithContext(yaml_path);
   return LoadedMap{std::move(*grid), std::move(*m)};

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/map_render.h"
+#include "core/codecs/map_render.h"
 #include "core/scan_inserter.h"
 #include "tools/carmen/carmen_log.h"
 #include "tools/carmen/relations.h"

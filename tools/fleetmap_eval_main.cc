@@ -9,7 +9,7 @@
 
 #include "core/file_io.h"
 #include "core/map_io.h"
-#include "core/map_render.h"
+#include "core/codecs/map_render.h"
 #include "tools/eval/agents_pipeline.h"
 #include "tools/eval/eval_figures.h"
 #include "tools/eval/pipeline.h"
@@ -45,7 +45,8 @@ options:
   --seed N                truthmaps: added to the scenario's seed for the anchor errors [0]
   --lcm-log FILE     score a recorded fleet run instead of running a pipeline: the
                     lcm-logger logs of its sensor, uplink and downlink groups (repeat the
-                    flag); adds fleet.* keys (bytes per channel, change latency) to report.json
+                    flag); adds fleet.* keys (bytes per channel per simulated second, change
+                    latency in wall-clock seconds) to report.json
   --epoch S         recorded run: the epoch fleetmap-sim added to simulated time  [0]
   --duration S      recorded run: the simulated seconds it ran  [the scenario's duration]
   --vehicle-map ID=FILE  recorded run: a vehicle's final map (fleetmap-agent --final-map),
@@ -236,6 +237,7 @@ int RunRecorded(const Args& args, const sim::World& world, const std::string& na
   options.epoch_s = Number(args.epoch);
   const double duration =
       args.duration.empty() ? world.scenario().duration_s : Number(args.duration);
+  options.duration_s = duration;
   if (!std::isfinite(options.epoch_s) || !(duration > 0)) {
     std::fprintf(stderr, "fleetmap-eval: --epoch and --duration take numbers (duration > 0)\n");
     return 2;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/map_io.h"
-#include "core/map_render.h"
+#include "core/codecs/map_render.h"
 #include "core/tile_delta.h"
 #include "tools/sim/livinglab_map.h"
 

@@ -14,7 +14,7 @@
 #include "aggregator/node/log_replay.h"
 #include "aggregator/node/node_config.h"
 #include "core/map_io.h"
-#include "core/map_render.h"
+#include "core/codecs/map_render.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "core/file_io.h"
-#include "core/map_render.h"
+#include "core/codecs/map_render.h"
 
 namespace fleetmap::core {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/map_render.h"
+#include "core/codecs/map_render.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

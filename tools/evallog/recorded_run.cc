@@ -72,6 +72,8 @@ class Reader {
 
   RecordedRun Finish(int64_t first_wall, int64_t last_wall) {
     record_.fleet.wall_span_s = (last_wall - first_wall) * 1e-6;
+    record_.fleet.rate_span_s =
+        options_.duration_s > 0 ? options_.duration_s : record_.fleet.wall_span_s;
     record_.fleet.final_version = replica_.has_map() ? replica_.version() : 0;
     // Each accepted merge: from its first tile to the last vehicle holding its version.
     for (const auto& [version, closed_wall] : merge_closed_wall_) {
@@ -281,7 +283,7 @@ double Percentile(std::vector<double> v, double q) {
 
 std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigures& f) {
   std::vector<std::pair<std::string, std::string>> kv;
-  const double span = std::max(f.wall_span_s, 1e-9);
+  const double span = std::max(f.rate_span_s, 1e-9);
   for (const auto& [channel, t] : f.traffic)
     kv.emplace_back("fleet.bytes_per_s." + channel, Num(t.bytes / span));
   for (const auto& [channel, t] : f.traffic) {
@@ -290,6 +292,7 @@ std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigur
                     Num(t.messages > 0 ? double(t.bytes) / t.messages : 0.0));
   }
   kv.emplace_back("fleet.wall_span_s", Num(f.wall_span_s));
+  kv.emplace_back("fleet.rate_span_s", Num(f.rate_span_s));
   kv.emplace_back("fleet.change_latency_s.count", std::to_string(f.change_latency_s.size()));
   kv.emplace_back("fleet.change_latency_s.median", Num(Percentile(f.change_latency_s, 0.5)));
   kv.emplace_back("fleet.change_latency_s.p95", Num(Percentile(f.change_latency_s, 0.95)));
@@ -312,7 +315,7 @@ std::string FleetFigureLines(const FleetFigures& f) {
     const bool rate = key.rfind("fleet.messages_per_s.", 0) == 0;
     const bool size = key.rfind("fleet.mean_message_bytes.", 0) == 0;
     const bool seconds =
-        key == "fleet.wall_span_s" ||
+        key == "fleet.wall_span_s" || key == "fleet.rate_span_s" ||
         (key.rfind("fleet.change_latency_s.", 0) == 0 && key != "fleet.change_latency_s.count");
     const char* unit = per_s ? "B/s" : rate ? "1/s" : size ? "B" : seconds ? "s" : "count";
     out += key + " " + value + " " + unit + "\n";

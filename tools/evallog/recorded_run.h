@@ -21,6 +21,9 @@ struct RecordedRunOptions {
   double epoch_s = 0.0;              // what fleetmap-sim added to simulated time, seconds
   double divergence_period_s = 0.1;  // keep one DIVERGENCE_ sample per vehicle per period
   double pose_period_s = 0.5;        // and one POSE_ sample
+  // Simulated seconds the run covered: rates per channel are per simulated second (what a
+  // fleet sends in real time, whatever the simulator's speed). 0: per wall-clock second.
+  double duration_s = 0.0;
 };
 
 struct ChannelTraffic {
@@ -30,6 +33,7 @@ struct ChannelTraffic {
 
 struct FleetFigures {
   double wall_span_s = 0.0;  // first to last logged message, wall-clock seconds
+  double rate_span_s = 0.0;  // the denominator of the rates: simulated (or wall) seconds
   std::map<std::string, ChannelTraffic> traffic;  // by channel
   // Per accepted merge: the map's first tile on the uplink -> the last vehicle reporting
   // (POSE_ map_version) the version that merge made. Wall-clock seconds.

@@ -1,9 +1,10 @@
-#include "core/map_render.h"
+#include "core/codecs/map_render.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/file_io.h"
+#include "core/image_file.h"
 #include "core/pgm.h"
 
 namespace fleetmap::core {
@@ -103,6 +104,37 @@ Result<BgrImage> ReadBgrImage(const std::string& path) {
   for (int row = 0; row < mat.rows; ++row) {
     const uint8_t* p = mat.ptr<uint8_t>(row);
     image.pixels.insert(image.pixels.end(), p, p + static_cast<size_t>(mat.cols) * 3);
+  }
+  return image;
+}
+
+}  // namespace fleetmap::core
+
+namespace fleetmap::core {
+
+Result<DecodedImage> DecodeImageFile(const std::string& path) {
+  cv::Mat mat;
+  try {
+    mat = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const std::exception& e) {  // cv::Exception, std::bad_alloc
+    return InvalidArgument(path + ": OpenCV cannot read the image: " + e.what());
+  }
+  if (mat.empty()) return InvalidArgument(path + ": not an image OpenCV can decode");
+  if (mat.depth() != CV_8U) return Unimplemented(path + ": only 8-bit images are supported");
+  if (mat.channels() != 1 && mat.channels() != 3 && mat.channels() != 4) {
+    return Unimplemented(path + ": images need 1, 3 or 4 channels, not " +
+                         std::to_string(mat.channels()));
+  }
+  if (int64_t{mat.cols} * mat.rows > kMaxGridCells) {
+    return OutOfRange(path + ": image exceeds the limit of " + std::to_string(kMaxGridCells) +
+                      " pixels");
+  }
+  DecodedImage image{mat.cols, mat.rows, mat.channels(), {}};
+  const size_t row_bytes = static_cast<size_t>(mat.cols) * mat.channels();
+  image.pixels.reserve(row_bytes * mat.rows);
+  for (int row = 0; row < mat.rows; ++row) {
+    const uint8_t* p = mat.ptr<uint8_t>(row);
+    image.pixels.insert(image.pixels.end(), p, p + row_bytes);
   }
   return image;
 }
