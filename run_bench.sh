@@ -19,6 +19,16 @@ for program in build-release/bench/*_bench; do
   "$program" --benchmark_min_time="$min_time" --benchmark_color=false | tee "out/bench/$name.txt" >&2
 done
 
+# A running agent process: 1 vehicle at 25 Hz in real time over multicast on loopback.
+echo "== agent_process_bench" >&2
+if scripts/setup_multicast.sh >/dev/null 2>&1; then
+  { echo "# figures"; bench/agent_process_bench.sh build-release 30 | grep -E '^agent\.'; } \
+    >out/bench/agent_process_bench.txt
+else
+  echo "agent_process_bench: skipped: no multicast on loopback (scripts/setup_multicast.sh needs root)" >&2
+  echo "# figures" >out/bench/agent_process_bench.txt
+fi
+
 # Every program ends with "# figures" and then `name value unit` lines.
 figures=$(for f in out/bench/*_bench.txt; do sed -n '/^# figures$/,$p' "$f" | sed 1d; done)
 echo
