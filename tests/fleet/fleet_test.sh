@@ -6,16 +6,17 @@
 # detection is right (F1 of changed cells >= MIN_F1, no static cell erased), that every
 # vehicle ends holding exactly the fleet's final map, and that replaying the uplink log gives
 # the same map byte for byte.
-#   tests/fleet/fleet_test.sh BIN_DIR OUT_DIR PORT [--loss P] [--min-f1 F]
+#   tests/fleet/fleet_test.sh BIN_DIR OUT_DIR PORT [--loss P] [--min-f1 F] [--speed X]
 # Exits 77 (ctest: skipped) with the reason when multicast on loopback cannot be set up.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bin=${1:?BIN_DIR}; out=${2:?OUT_DIR}; port=${3:?PORT}; shift 3
-loss=0 min_f1=0.95
+loss=0 min_f1=0.95 speed=4
 while [ $# -gt 0 ]; do
   case $1 in
     --loss) loss=$2; shift 2 ;;
     --min-f1) min_f1=$2; shift 2 ;;
+    --speed) speed=$2; shift 2 ;;
     *) echo "fleet_test.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -31,7 +32,7 @@ ip netns del fleetmap-probe-$$ 2>/dev/null || true
 
 rm -rf "$out"
 "$root/scripts/fleet_run.sh" --scenario "$root/tools/sim/worlds/livinglab/fleet_short.yaml" \
-  --speed 4 --out "$out" --port "$port" --bin "$bin" --name fleet --loss "$loss"
+  --speed "$speed" --out "$out" --port "$port" --bin "$bin" --name fleet --loss "$loss"
 rc=$?
 [ -f "$out/figures.txt" ] || { echo "FAIL: the run wrote no figures (fleet_run.sh exit $rc)"; exit 1; }
 cat "$out/figures.txt"
