@@ -69,7 +69,10 @@ check channel_bytes_per_s.TEMPMAP_* '>' 0
 check channel_bytes_per_s.MAP_DELTA '>' 0
 check changes.occupancy_grid_bytes '>' 0
 [ -s "$out/summary.csv" ] || { echo "FAIL: no $out/summary.csv"; fail=1; }
-for f in "$out"/wired_v2/logs/aggregator.txt "$out"/wired_v2/logs/agent_*.txt; do
+logs=$out/single/wired_v2/logs
+[ -s "$logs/aggregator.txt" ] || { echo "FAIL: no aggregator output in $logs"; fail=1; }
+for f in "$logs"/aggregator.txt "$logs"/agent_*.txt; do
+  [ -f "$f" ] || continue
   if grep -qiE 'sanitizer|runtime error|Assertion|terminate called' "$f"; then
     echo "FAIL: $f reports a crash or sanitizer error"; fail=1
   fi

@@ -24,12 +24,20 @@ LAN_SHAPED=()      # "NS DEV" of every shaped interface
 
 lan_ns() { echo "$LAN_PREFIX-$1"; }  # lan_ns br|srv|v1 ...
 
+# lan_netns_add NS: a namespace without IPv6, whose router solicitations and multicast
+# listener reports would otherwise add a few packets to the counters.
+lan_netns_add() {
+  ip netns add "$1" || return 1
+  LAN_NAMESPACES+=("$1")
+  ip netns exec "$1" sysctl -q -w net.ipv6.conf.all.disable_ipv6=1 \
+    net.ipv6.conf.default.disable_ipv6=1 >/dev/null 2>&1 || true
+}
+
 # lan_create N: the bridge, the server and N vehicle hosts.
 lan_create() {
   local n=$1 br k
   br=$(lan_ns br)
-  ip netns add "$br" || return 1
-  LAN_NAMESPACES+=("$br")
+  lan_netns_add "$br" || return 1
   ip -n "$br" link set lo up
   ip -n "$br" link add name br0 type bridge mcast_snooping 0 || return 1
   ip -n "$br" link set br0 up
@@ -42,8 +50,7 @@ lan_add_host() {
   local name=$1 octet=$2 ns br
   ns=$(lan_ns "$name")
   br=$(lan_ns br)
-  ip netns add "$ns" || return 1
-  LAN_NAMESPACES+=("$ns")
+  lan_netns_add "$ns" || return 1
   ip -n "$br" link add name "p$name" type veth peer name lan0 netns "$ns" || return 1
   ip -n "$br" link set "p$name" master br0
   ip -n "$br" link set "p$name" up

@@ -7,7 +7,7 @@ uplink_bytes_per_s_per_vehicle,server_tx_bytes_per_s,server_rx_bytes_per_s,\
 packets_per_s_per_vehicle,map_bytes_per_s,occupancy_grid_bytes_per_s,tempmaps_closed,\
 tempmaps_delivered,tempmaps_delivered_ratio,tiles_sent,tiles_resent,retry_ratio,changes,\
 change_latency_s_median,change_latency_s_p95,changes_not_everywhere,vehicle_maps_equal,\
-changed_f1,tc_loss_drops,scans_skipped,sim_realtime_ratio,sweep"
+changed_f1,tc_loss_drops,scans_skipped,sim_realtime_ratio,tempmap_bytes_per_s,sweep"
 
 # A figure of a run (figures_raw.txt), or NaN.
 lan_fig() { awk -v k="$2" '$1 == k { v = $2 } END { print (v == "" ? "nan" : v) }' "$1/figures_raw.txt"; }
@@ -21,7 +21,7 @@ lan_csv_row() {
     occupancy_grid_bytes_per_s tempmaps_closed tempmaps_delivered tempmaps_delivered_ratio \
     tiles_sent tiles_resent retry_ratio changes.count change_latency_s.median \
     change_latency_s.p95 changes_not_everywhere vehicle_maps_equal changed_f1 tc_loss_drops \
-    scans_skipped sim_realtime_ratio; do
+    scans_skipped sim_realtime_ratio channel_bytes_per_s.TEMPMAP_*; do
     out+=",$(lan_fig "$dir" "$f")"
   done
   echo "$out,${SWEEP:-single}"
@@ -47,7 +47,7 @@ lan_codec_sweep() {
         dt = (var["TEMPMAP"] - sent["TEMPMAP"]) / d
         dm = (var["MAP_DELTA"] + var["MAP_KEYFRAME"] - sent["MAP_DELTA"] - sent["MAP_KEYFRAME"]) / d
         m = split(row, c, ",")
-        c[7] += dt + dm; c[8] += dt / n; c[9] += dm; c[10] += dt; c[12] += dm
+        c[7] += dt + dm; c[8] += dt / n; c[9] += dm; c[10] += dt; c[12] += dm; c[29] += dt
         out = c[1]; for (i = 2; i <= m; ++i) out = out "," c[i]; print out
       }' "$dir/codec.txt"
   done >>"$OUT/summary.rows"
@@ -89,6 +89,7 @@ lan_plot() {
         plot '$csv' skip 1 using 1:7 with linespoints title 'per vehicle link (tx+rx)',
              '' skip 1 using 1:8 with linespoints title 'per vehicle uplink (tx)',
              '' skip 1 using 1:9 with linespoints title 'server tx (downlink)',
+             '' skip 1 using 1:(\$12 + \$29) with linespoints title 'our maps (TEMPMAP + MAP_*)',
              '' skip 1 using 1:13 with linespoints title 'OccupancyGrid on every change';
         unset logscale y; set ylabel 'seconds / ratio';
         set title 'Change latency (temporary map closed -> every vehicle holds it), F1';
@@ -100,20 +101,22 @@ lan_plot() {
       local x=2
       [ "$kind" = resolution ] && x=3
       gnuplot -e "$common; set multiplot layout 1,2; set style data histograms;
-        set style fill solid 0.8 border -1; set boxwidth 0.8;
+        set style fill solid 0.8 border -1; set boxwidth 0.8; set key below horizontal;
         set title 'Traffic (bytes/s)'; set logscale y;
         plot '$csv' skip 1 using 7:xtic($x) title 'per vehicle link',
-             '' skip 1 using 9 title 'server tx', '' skip 1 using 13 title 'OccupancyGrid per change';
+             '' skip 1 using 9 title 'server tx', '' skip 1 using (\$12 + \$29) title 'our maps',
+             '' skip 1 using 13 title 'OccupancyGrid per change';
         unset logscale y; set title 'Delivery and latency'; set yrange [0:*];
         plot '' skip 1 using 16:xtic($x) title 'tempmaps delivered ratio',
-             '' skip 1 using 19 title 'retry ratio (tiles resent/sent)',
+             '' skip 1 using 19 title 'resends per tile',
              '' skip 1 using 21 title 'latency median [s]', '' skip 1 using 25 title 'changed F1';
         unset multiplot" ;;
     codec)
       gnuplot -e "$common; set style data histograms; set style fill solid 0.8 border -1;
-        set logscale y; set ylabel 'bytes/s'; set title 'The run re-encoded with each codec';
+        set key below horizontal; set logscale y; set ylabel 'bytes/s'; set title 'The run re-encoded with each codec';
         plot '$csv' skip 1 using 8:xtic(4) title 'per vehicle uplink',
              '' skip 1 using 9 title 'server tx (map changes + keyframes)',
+             '' skip 1 using (\$12 + \$29) title 'our maps (TEMPMAP + MAP_*)',
              '' skip 1 using 13 title 'OccupancyGrid on every change'" ;;
   esac
 }

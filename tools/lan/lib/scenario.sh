@@ -18,7 +18,7 @@
 # 14.5 (north), and cross between them only at x values away from the stations. Vehicle i
 # takes one of three route shapes (a loop one way, the other way, back and forth on a lane),
 # its own stretch of the hall, one of the three scanner models, and a start time of its own
-# (0 .. 8 s), so that the fleet does not move in lockstep. Pallets stand beside the lanes: some
+# (0 .. 8.9 s, distinct for up to 90 vehicles), so that the fleet does not move in lockstep. Pallets stand beside the lanes: some
 # there from the start (every vehicle passes one within seconds, so even a 20 s run closes
 # temporary maps), one placed at 30% of the run, one taken away at 60%. A person walks along
 # the hall (never part of the map). MAP_YAML is written as given (relative to OUT's folder, or
@@ -48,8 +48,8 @@ lan_scenario() {
     echo "vehicles:"
     local i xa xb ys yn shape route start k=${#cross[@]}
     for ((i = 0; i < n; ++i)); do
-      xa=${cross[$(((i * 3) % k))]}
-      xb=${cross[$(((i * 3 + 5) % k))]}
+      xa=${cross[$(((i * 3 + i / k) % k))]}  # every k vehicles the stretches shift by one
+      xb=${cross[$(((i * 3 + i / k + 5) % k))]}
       if ((xa > xb)); then local t=$xa; xa=$xb; xb=$t; fi
       ys=${south[$((i % 2))]}
       yn=${north[$((i % 3))]}
@@ -59,7 +59,7 @@ lan_scenario() {
         1) route="[[$xb, $yn], [$xa, $yn], [$xa, $ys], [$xb, $ys]]" ;;
         2) route="[[$xa, $yn], [$xb, $yn]]" ;;
       esac
-      start=$(((i * 3) % 9))
+      start=$(awk -v i="$i" 'BEGIN { printf "%.1f", (i * 7 % 90) / 10 }')  # distinct, 0 .. 8.9 s
       ((only == 0 || only == i + 1)) || continue
       echo "  - id: v$((i + 1))"
       echo "    scanner: ${scanners[$((i % 3))]}"
