@@ -89,8 +89,8 @@ lan_plot() {
         plot '$csv' skip 1 using 1:7 with linespoints title 'per vehicle link (tx+rx)',
              '' skip 1 using 1:8 with linespoints title 'per vehicle uplink (tx)',
              '' skip 1 using 1:9 with linespoints title 'server tx (downlink)',
-             '' skip 1 using 1:(\$12 + \$29) with linespoints title 'our maps (TEMPMAP + MAP_*)',
-             '' skip 1 using 1:13 with linespoints title 'OccupancyGrid on every change';
+             '' skip 1 using 1:(\$12 + \$29) with linespoints lc rgb 'black' title 'our maps (TEMPMAP + MAP_*)',
+             '' skip 1 using 1:13 with linespoints lc rgb 'red' title 'OccupancyGrid on every change';
         unset logscale y; set ylabel 'seconds / ratio';
         set title 'Change latency (temporary map closed -> every vehicle holds it), F1';
         plot '' skip 1 using 1:21 with linespoints title 'latency median [s]',
