@@ -39,8 +39,10 @@ Result<bool> MapReplica::AddKeyframeTile(const KeyframeTile& tile) {
   options.tile_size_cells = tile.tile_size_cells;
   FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext("keyframe"));
   const TileLayout layout(tile.geometry, tile.tile_size_cells);
+  // The position before Linear(), which overflows for one far outside the layout.
   if (tile.count != layout.num_tiles() || tile.index < 0 || tile.index >= tile.count ||
-      layout.Linear(tile.tile) != tile.index) {
+      tile.tile.tx < 0 || tile.tile.ty < 0 || tile.tile.tx >= layout.tiles_x() ||
+      tile.tile.ty >= layout.tiles_y() || layout.Linear(tile.tile) != tile.index) {
     return DataLoss("keyframe tile index or count does not fit the map");
   }
   if (map_ && tile.version <= version_) return false;  // we are already there
@@ -65,7 +67,7 @@ Result<bool> MapReplica::AddKeyframeTile(const KeyframeTile& tile) {
   tile_size_cells_ = tile.tile_size_cells;
   deltas_.erase(deltas_.begin(), deltas_.lower_bound(version_));  // older than the keyframe
   ApplyReadyDeltas();
-  return true;
+  return map_.has_value();  // a corrupt buffered delta drops the map it completed
 }
 
 Result<bool> MapReplica::AddDeltaTile(const DeltaTile& tile) {
@@ -83,7 +85,7 @@ Result<bool> MapReplica::AddDeltaTile(const DeltaTile& tile) {
   if (tile.count > 0) p.tiles[tile.index] = EncodedTile{tile.tile, tile.frame};
   const int32_t before = version_;
   if (map_) ApplyReadyDeltas();
-  return version_ != before;
+  return map_.has_value() && version_ != before;  // not when a corrupt delta dropped the map
 }
 
 void MapReplica::ApplyReadyDeltas() {

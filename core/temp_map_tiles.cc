@@ -58,8 +58,9 @@ Status TempMapAssembler::CheckAlone(const TempMapTile& t) const {
   }
   const TileLayout layout(g, options_.tile_size_cells);
   if (layout.num_tiles() != t.count) return DataLoss("tile count does not fit the map's size");
-  if (layout.Linear(t.tile) != t.index || t.tile.tx >= layout.tiles_x() ||
-      t.tile.ty >= layout.tiles_y()) {
+  // The position first: Linear() of a position far outside the layout overflows.
+  if (t.tile.tx < 0 || t.tile.ty < 0 || t.tile.tx >= layout.tiles_x() ||
+      t.tile.ty >= layout.tiles_y() || layout.Linear(t.tile) != t.index) {
     return DataLoss("tile position does not fit its index");
   }
   if (!std::isfinite(t.start_s) || !std::isfinite(t.end_s) || t.end_s < t.start_s) {

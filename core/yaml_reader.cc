@@ -27,14 +27,16 @@ Result<YamlReader> YamlReader::FromString(const std::string& text, const std::st
 
 Status YamlReader::Error(const YAML::Node& node, const std::string& field,
                          const std::string& what) const {
-  const int line = node.Mark().line;  // -1 for nodes made up by yaml-cpp (missing keys)
+  // -1 for nodes made up by yaml-cpp (missing keys). A lookup in a node that does not exist
+  // (rect["center"] when rect is null) gives an invalid node, whose Mark() throws.
+  const int line = node.IsDefined() ? node.Mark().line : -1;
   const std::string where = line >= 0 ? path_ + ":" + std::to_string(line + 1) : path_;
   return InvalidArgument(where + ": " + field + ": " + what);
 }
 
 Result<double> YamlReader::Number(const YAML::Node& parent, const std::string& key,
                                   const std::string& field, std::optional<double> fallback) const {
-  if (!parent.IsMap() || !parent[key]) {
+  if (!parent.IsDefined() || !parent.IsMap() || !parent[key]) {
     if (fallback) return *fallback;
     return Error(parent, field, "missing");
   }
@@ -45,7 +47,9 @@ Result<double> YamlReader::Number(const YAML::Node& parent, const std::string& k
 
 Result<std::vector<double>> YamlReader::Numbers(const YAML::Node& node, const std::string& field,
                                                 size_t length) const {
-  if (!node.IsSequence()) return Error(node, field, "must be a list of numbers");
+  if (!node.IsDefined() || !node.IsSequence()) {
+    return Error(node, field, "must be a list of numbers");
+  }
   if (length != 0 && node.size() != length) {
     return Error(node, field, "must have " + std::to_string(length) + " numbers");
   }
@@ -68,7 +72,7 @@ Result<Eigen::Vector2d> YamlReader::Point(const YAML::Node& node, const std::str
 Result<std::vector<Eigen::Vector2d>> YamlReader::Points(const YAML::Node& node,
                                                         const std::string& field,
                                                         size_t min_points) const {
-  if (!node.IsSequence() || node.size() < min_points) {
+  if (!node.IsDefined() || !node.IsSequence() || node.size() < min_points) {
     return Error(node, field,
                  "must be a list of at least " + std::to_string(min_points) + " [x, y] points");
   }

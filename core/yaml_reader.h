@@ -1,6 +1,7 @@
 // Typed reading of YAML files whose every error names the file, the line and the field:
 // "scenario.yaml:12: vehicles[0].speed_mps: must be positive". yaml-cpp exceptions are caught
-// here and never escape.
+// here and never escape; a node looked up in a missing one (IsDefined() false, and yaml-cpp
+// throws on any other question to it) reads as missing.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -29,14 +30,16 @@ class YamlReader {
   // Required scalar `key` of map `parent`; `field` is the dotted path used in messages.
   template <typename T>
   Result<T> Get(const YAML::Node& parent, const std::string& key, const std::string& field) const {
-    if (!parent.IsMap() || !parent[key]) return Error(parent, field, "missing");
+    if (!parent.IsDefined() || !parent.IsMap() || !parent[key]) {
+      return Error(parent, field, "missing");
+    }
     return Convert<T>(parent[key], field);
   }
   // Optional scalar: `fallback` when absent, an error when present but malformed.
   template <typename T>
   Result<T> GetOr(const YAML::Node& parent, const std::string& key, const std::string& field,
                   T fallback) const {
-    if (!parent.IsMap() || !parent[key]) return fallback;
+    if (!parent.IsDefined() || !parent.IsMap() || !parent[key]) return fallback;
     return Convert<T>(parent[key], field);
   }
   // A finite number.

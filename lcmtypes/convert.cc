@@ -14,15 +14,16 @@ fleetmap::pose2d_t ToMessage(const core::Pose2& p) {
 
 core::Pose2 FromMessage(const fleetmap::pose2d_t& m) { return {m.x_m, m.y_m, m.theta_rad}; }
 
-namespace {
-
-core::Status CheckVehicle(const std::string& id) {
+core::Status CheckVehicleId(const std::string& id) {
   if (id.empty() || id.size() > 64)
     return core::InvalidArgument("vehicle_id must have 1 to 64 characters");
+  for (const char c : id) {
+    if (c < 0x21 || c > 0x7E) {
+      return core::InvalidArgument("vehicle_id may only hold printable ASCII characters");
+    }
+  }
   return core::OkStatus();
 }
-
-}  // namespace
 
 int64_t ToUtime(double stamp_s) { return static_cast<int64_t>(std::llround(stamp_s * 1e6)); }
 double FromUtime(int64_t utime) { return static_cast<double>(utime) * 1e-6; }
@@ -46,7 +47,7 @@ fleetmap::laser_scan_t ToMessage(const core::LaserScan& scan, const std::string&
 }
 
 core::Result<core::LaserScan> FromMessage(const fleetmap::laser_scan_t& m) {
-  FLEETMAP_RETURN_IF_ERROR(CheckVehicle(m.vehicle_id));
+  FLEETMAP_RETURN_IF_ERROR(CheckVehicleId(m.vehicle_id));
   if (m.num_ranges < 1 || m.num_ranges > kMaxBeams) {
     return core::OutOfRange("scan of " + std::to_string(m.num_ranges) + " beams (allowed 1 to " +
                             std::to_string(kMaxBeams) + ")");
@@ -75,7 +76,7 @@ fleetmap::odometry_t ToMessage(const core::OdometrySample& o, const std::string&
 }
 
 core::Result<core::OdometrySample> FromMessage(const fleetmap::odometry_t& m) {
-  FLEETMAP_RETURN_IF_ERROR(CheckVehicle(m.vehicle_id));
+  FLEETMAP_RETURN_IF_ERROR(CheckVehicleId(m.vehicle_id));
   core::OdometrySample o{FromUtime(m.utime), FromMessage(m.pose), m.v_mps, m.omega_radps};
   FLEETMAP_RETURN_IF_ERROR(o.Validate().WithContext("odometry from " + m.vehicle_id));
   return o;
@@ -93,7 +94,7 @@ fleetmap::pose_with_covariance_t ToMessage(const core::PoseEstimate& p,
 }
 
 core::Result<core::PoseEstimate> FromMessage(const fleetmap::pose_with_covariance_t& m) {
-  FLEETMAP_RETURN_IF_ERROR(CheckVehicle(m.vehicle_id));
+  FLEETMAP_RETURN_IF_ERROR(CheckVehicleId(m.vehicle_id));
   core::PoseEstimate p;
   p.stamp_s = FromUtime(m.utime);
   p.pose_in_map = FromMessage(m.pose);

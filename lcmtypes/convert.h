@@ -45,6 +45,11 @@ constexpr const char* kMergeReportChannel = "MERGE_REPORT";
 // Both: every process's heartbeat, e.g. STATUS_agent_v1, STATUS_aggregator.
 inline std::string StatusChannel(const std::string& process) { return "STATUS_" + process; }
 
+// A vehicle id from the network: 1 to 64 printable ASCII characters. Ids become channel names,
+// and LCM encodes a string only up to its first NUL, so an id with a NUL, a space or a control
+// character could be accepted but never answered.
+core::Status CheckVehicleId(const std::string& id);
+
 int64_t ToUtime(double stamp_s);
 double FromUtime(int64_t utime);
 

@@ -70,8 +70,7 @@ fleetmap::tempmap_tile_t ToMessage(const core::TempMapTile& t, int64_t utime) {
 
 core::Result<core::TempMapTile> FromMessage(const fleetmap::tempmap_tile_t& m) {
   core::TempMapTile t;
-  if (m.vehicle_id.empty() || m.vehicle_id.size() > 64)
-    return core::InvalidArgument("bad vehicle id");
+  FLEETMAP_RETURN_IF_ERROR(CheckVehicleId(m.vehicle_id));
   t.vehicle_id = m.vehicle_id;
   t.sequence = m.tempmap_seq;
   t.index = m.tile_index;
@@ -133,7 +132,7 @@ fleetmap::map_delta_t ToMessage(const core::DeltaTile& d, int64_t utime) {
 }
 
 core::Result<core::DeltaTile> FromMessage(const fleetmap::map_delta_t& m) {
-  if (m.new_version != m.base_version + 1)
+  if (int64_t{m.new_version} != int64_t{m.base_version} + 1)  // no overflow at INT32_MAX
     return core::DataLoss("a delta must advance one version");
   core::DeltaTile d;
   d.base_version = m.base_version;

@@ -35,7 +35,12 @@ core::Result<double> ParseStamp(std::string_view t) {
       fraction += (t[i] - '0') * scale;
     }
   }
-  return seconds + fraction;
+  // candump writes seconds since the epoch. Beyond 1e12 s (year 33658) a stamp is corrupt, and
+  // FormatCandumpLine could not write it back: 19 integer digits no longer fit the 25
+  // characters read here, and 1e19 s not a long long.
+  const double stamp_s = seconds + fraction;
+  if (stamp_s >= 1e12) return core::InvalidArgument("timestamp out of range");
+  return stamp_s;
 }
 
 core::Status ParseData(std::string_view d, CanFrame& f) {

@@ -39,6 +39,8 @@ Result<SemiStaticObject> ReadObject(const YamlReader& r, const YAML::Node& n,
   FLEETMAP_ASSIGN_OR_RETURN(o.kind, r.GetOr<std::string>(n, "kind", f + ".kind", o.kind));
   if (n["rect"]) {
     const YAML::Node rect = n["rect"];
+    // yaml-cpp throws on a key looked up in a scalar.
+    if (!rect.IsMap()) return r.Error(rect, f + ".rect", "must be a map with center and size");
     Eigen::Vector2d center, size;
     FLEETMAP_ASSIGN_OR_RETURN(center, r.Point(rect["center"], f + ".rect.center"));
     FLEETMAP_ASSIGN_OR_RETURN(size, r.Point(rect["size"], f + ".rect.size"));
