@@ -25,6 +25,7 @@ void Measure(const AlignmentResult& a, double resolution_m, AlignmentConfidence&
   c.residual_cells = WeightedMedian(distances);
   c.angle_residual_deg = WeightedMedian(angles);
   c.prominence = a.shift_by_overlap ? a.overlap.Prominence() : 1.0;
+  c.distinctness = a.shift_by_overlap ? a.overlap.Distinctness() : 1.0;
 }
 
 // The first failed check, in order of how fundamental it is.
@@ -50,6 +51,10 @@ void Judge(const AlignmentResult& a, const ConfidenceOptions& o, AlignmentConfid
   } else if (c.prominence < o.min_prominence) {
     reject(RejectReason::kAmbiguousShift,
            Format("overlap peak prominence %.4f < %.4f", c.prominence, o.min_prominence));
+  } else if (c.distinctness < o.min_distinctness) {
+    reject(RejectReason::kAmbiguousShift,
+           Format("another shift fits almost as well: overlap peak distinctness %.3f < %.3f",
+                  c.distinctness, o.min_distinctness));
   } else if (a.shift_by_overlap && a.overlap.at_edge) {
     reject(RejectReason::kAmbiguousShift,
            Format("overlap peak at the end of its range (%.3f m, score %.3f)", a.overlap.shift_m,
@@ -102,6 +107,8 @@ core::Status ConfidenceOptions::Validate() const {
     return core::InvalidArgument("confidence.max_correction_rad must be > 0");
   if (!(min_prominence >= 0 && min_prominence < 1))
     return core::InvalidArgument("confidence.min_prominence must be in [0, 1)");
+  if (!(min_distinctness >= 0 && min_distinctness <= 1))
+    return core::InvalidArgument("confidence.min_distinctness must be in [0, 1]");
   if (!(max_overlap_loss >= 0))
     return core::InvalidArgument("confidence.max_overlap_loss must be >= 0");
   if (!(min_explained_fraction >= 0 && min_explained_fraction <= 1))

@@ -56,8 +56,8 @@ bool CurrentMapStore::Fits(const CellChange& c) const {
       return !semi;
     case CellChangeKind::kRemoved:
       return semi;
-    case CellChangeKind::kCandidate:
-      return !semi && !candidate;
+    case CellChangeKind::kCandidate:  // new, or renewed by a later sighting
+      return !semi;
     case CellChangeKind::kCandidateDropped:
       return candidate;
   }

@@ -39,7 +39,8 @@ class CurrentMapStore {
   const core::OccupancyGrid& current_map() const { return current_; }
   // Per cell: 1 where the current map holds a semi-static obstacle.
   const std::vector<uint8_t>& semi_static() const { return semi_static_; }
-  // Cells seen occupied once, waiting for confirmation, with the span of the map that saw them.
+  // Cells seen occupied once, waiting for confirmation, with the span of the map that saw them
+  // (last).
   const std::map<int64_t, TimeSpan>& candidates() const { return candidates_; }
   const std::vector<uint8_t>& candidate_mask() const { return candidate_mask_; }
   const ProvenanceLog& provenance() const { return provenance_; }
@@ -48,7 +49,8 @@ class CurrentMapStore {
 
   // FailedPrecondition unless the commit continues this map: version() + 1, cells inside the
   // map, no static cell touched, added cells not yet semi-static, removed cells semi-static,
-  // new candidates neither semi-static nor candidates yet, dropped candidates candidates.
+  // candidates (new, or renewed by a later sighting) not semi-static, dropped candidates
+  // candidates.
   core::Status Check(const MergeCommit& commit) const;
   // Check, then apply: the map, tile versions, the retained delta and the provenance.
   // Returns the delta from version() - 1 to version().

@@ -66,13 +66,21 @@ class Planner {
     return neighbours >= o_.min_occupied_neighbours;
   }
 
-  // A candidate near (x, y) seen by a map at least confirm_min_gap_s away in time.
+  // Whether the candidate (x, y) was seen by a map confirm_min_gap_s to confirm_max_gap_s
+  // away in time from this one.
+  bool Confirms(int x, int y) const {
+    return Candidate(x, y) && in_.candidates->at(static_cast<int64_t>(Global(x, y)))
+                                  .Apart(span_, o_.confirm_min_gap_s, o_.confirm_max_gap_s);
+  }
+  // A candidate at or near (x, y) that confirms.
   bool EarlierSightingNear(int x, int y) const {
-    auto confirms = [&](int nx, int ny) {
-      return Candidate(nx, ny) && !in_.candidates->at(static_cast<int64_t>(Global(nx, ny)))
-                                       .Near(span_, o_.confirm_min_gap_s);
-    };
+    auto confirms = [&](int nx, int ny) { return Confirms(nx, ny); };
     return confirms(x, y) || AnyNear(x, y, o_.confirm_radius_cells, confirms);
+  }
+  // A candidate that can no longer be confirmed or dropped by a map this late.
+  bool Stale(int x, int y) const {
+    return Candidate(x, y) && !in_.candidates->at(static_cast<int64_t>(Global(x, y)))
+                                   .Near(span_, o_.confirm_max_gap_s);
   }
 
   // A semi-static cell is removed when seen free, with nothing occupied next to it and every
@@ -100,7 +108,8 @@ class Planner {
         AnyNear(x, y, o_.confirm_radius_cells, [&](int nx, int ny) { return Strong(nx, ny); })) {
       return CellChangeKind::kAdded;
     }
-    if (seen && !candidate) return CellChangeKind::kCandidate;
+    // First seen, or seen again too late to confirm: a candidate from this map on.
+    if (seen && (!candidate || Stale(x, y))) return CellChangeKind::kCandidate;
     return std::nullopt;
   }
 
@@ -178,6 +187,8 @@ core::Status MergeOptions::Validate() const {
     return core::InvalidArgument("merge.confirm_radius_cells must be in [0, 3]");
   if (!(confirm_min_gap_s >= 0))
     return core::InvalidArgument("merge.confirm_min_gap_s must be >= 0");
+  if (!(confirm_max_gap_s > confirm_min_gap_s))
+    return core::InvalidArgument("merge.confirm_max_gap_s must be > confirm_min_gap_s");
   return core::OkStatus();
 }
 

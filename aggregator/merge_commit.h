@@ -28,7 +28,8 @@ enum class CellChangeKind : uint8_t {
   kAdded = 1,    // a semi-static obstacle appeared where the static map is free
   kRemoved = 2,  // a semi-static obstacle was seen gone
   // Seen occupied once: a candidate until a temporary map of another time confirms it
-  // (merge.h, MergeOptions::confirmations). The map's cells do not change.
+  // (merge.h, MergeOptions::confirmations); seen again too late for that, it is renewed with
+  // the later map's time. The map's cells do not change.
   kCandidate = 3,
   kCandidateDropped = 4,  // a candidate seen free again: it was passing by
 };

@@ -33,6 +33,21 @@ Sample Best(const std::vector<Sample>& samples) {
   return best;
 }
 
+// The best local peak of the whole steps at least `separation` from `best`: a step no lower
+// than its neighbours (an end of the range counts, with its one neighbour). The lowest score
+// when there is none.
+double Rival(const std::vector<Sample>& samples, const Sample& best, double separation,
+             double lowest) {
+  double rival = lowest;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (std::abs(samples[i].shift - best.shift) < separation - 1e-9) continue;
+    const bool left = i == 0 || samples[i].score >= samples[i - 1].score;
+    const bool right = i + 1 == samples.size() || samples[i].score >= samples[i + 1].score;
+    if (left && right) rival = std::max(rival, samples[i].score);
+  }
+  return rival;
+}
+
 // Vertex of the parabola through three equally spaced samples around the best one.
 double ParabolaVertex(const std::vector<Sample>& fine, const Sample& best, double step) {
   for (size_t i = 1; i + 1 < fine.size(); ++i) {
@@ -52,6 +67,8 @@ core::Status OverlapSearchOptions::Validate() const {
   if (!(step_m > 0)) return core::InvalidArgument("overlap.step_m must be > 0");
   if (!(refine_step_m >= 0 && refine_step_m < step_m))
     return core::InvalidArgument("overlap.refine_step_m must be in [0, step_m)");
+  if (!(rival_separation_m >= step_m))
+    return core::InvalidArgument("overlap.rival_separation_m must be >= step_m");
   return core::OkStatus();
 }
 
@@ -74,6 +91,8 @@ OverlapPeak SearchShift(const StaticMapFeatures& f, const std::vector<Eigen::Vec
   peak.lowest = best.score;
   for (const Sample& c : coarse) peak.lowest = std::min(peak.lowest, c.score);
   peak.at_edge = best.shift == coarse.front().shift || best.shift == coarse.back().shift;
+  peak.step_best = best.score;
+  peak.rival = Rival(coarse, best, o.rival_separation_m, peak.lowest);
   peak.at_zero = OverlapScoreAt(f, points, Eigen::Vector2d::Zero(), o.score);
   if (o.refine_step_m > 0) {
     const auto fine = Scan(f, points, direction, best.shift - o.step_m, best.shift + o.step_m,

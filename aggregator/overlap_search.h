@@ -23,6 +23,9 @@ struct OverlapSearchOptions {
   double step_m = 0.05;  // step of the search (one cell at 5 cm), > 0
   // > 0: around the best step, steps of this size, then a parabola through the best three.
   double refine_step_m = 0.0125;
+  // Another local peak at least this far from the best one is its rival (see
+  // OverlapPeak::Distinctness), metres >= step_m.
+  double rival_separation_m = 0.15;
   core::Status Validate() const;
 };
 
@@ -32,8 +35,19 @@ struct OverlapPeak {
   double lowest = 0.0;   // the lowest score in the range
   double at_zero = 0.0;  // at shift 0
   bool at_edge = false;  // the best whole step is the first or last of the range
+  // Of the whole steps: the best score, and the best of the other local peaks at least
+  // rival_separation_m away (the lowest score when there is none).
+  double step_best = 0.0;
+  double rival = 0.0;
   // (score - lowest) / score: 0 for a flat score, larger for a pronounced peak.
   double Prominence() const { return score > 0 ? (score - lowest) / score : 0.0; }
+  // (step_best - rival) / (step_best - lowest): 1 for a single peak, near 0 when another
+  // shift fits almost as well. Points on the walls along the direction score the same at
+  // every shift and dilute the prominence; this compares the peaks' rise alone.
+  double Distinctness() const {
+    const double rise = step_best - lowest;
+    return rise > 0 ? (step_best - rival) / rise : 0.0;
+  }
 };
 
 // Mean score of the points (static frame) shifted by `shift`.

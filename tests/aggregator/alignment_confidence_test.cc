@@ -55,10 +55,46 @@ TEST(AlignmentConfidenceTest, EachReasonIsReportedWithWhatWasMeasured) {
   a.overlap.lowest = 0.799;  // a flat overlap: the corridor says nothing along it
   EXPECT_EQ(Judge(a).reason, RejectReason::kAmbiguousShift);
   a.overlap.lowest = 0.5;
-  a.overlap.at_edge = true;
-  EXPECT_EQ(Judge(a).reason, RejectReason::kAmbiguousShift);
+  a.overlap.step_best = 0.8;
+  a.overlap.rival = 0.5;  // a single peak ...
+  EXPECT_TRUE(Judge(a).accepted());
+  a.overlap.at_edge = true;  // ... at the end of the range
+  const AlignmentConfidence edge = Judge(a);
+  EXPECT_EQ(edge.reason, RejectReason::kAmbiguousShift);
+  EXPECT_NE(edge.explanation.find("end of its range"), std::string::npos) << edge.explanation;
   EXPECT_EQ(Judge(Good(), 0.8, 0.6).reason, RejectReason::kOverlapWorse);
   EXPECT_EQ(Judge(Good(), 0.1, 0.15).reason, RejectReason::kLowOverlap);
+}
+
+TEST(AlignmentConfidenceTest, AnotherPeakAlmostAsHighIsAmbiguous) {
+  AlignmentResult a = Good();
+  a.shift_by_overlap = true;
+  a.overlap.score = a.overlap.step_best = 0.80;
+  a.overlap.lowest = 0.70;
+  a.overlap.rival = 0.79;  // rises 0.09 of the peak's 0.10: distinctness 0.1
+  const AlignmentConfidence c = Judge(a);
+  EXPECT_EQ(c.reason, RejectReason::kAmbiguousShift);
+  EXPECT_NEAR(c.distinctness, 0.1, 1e-9);
+  EXPECT_NE(c.explanation.find("another shift"), std::string::npos) << c.explanation;
+  a.overlap.rival = 0.72;
+  EXPECT_TRUE(Judge(a).accepted());
+}
+
+// Two rows of points 0.3 m apart, and a wall: each row fits it at its own shift, equally well.
+TEST(OverlapSearchTest, TwoShiftsThatFitEquallyWellAreNotDistinct) {
+  auto f = StaticMapFeatures::Compute(testing::HallMap());
+  ASSERT_TRUE(f.ok());
+  std::vector<Eigen::Vector2d> one_row, two_rows;
+  for (double y = 2; y < 18; y += 0.05) {
+    one_row.emplace_back(0.125 + 0.13, y);
+    two_rows.emplace_back(0.125 + 0.13, y);
+    two_rows.emplace_back(0.125 + 0.43, y);
+  }
+  const OverlapSearchOptions o;
+  EXPECT_GT(SearchShift(*f, one_row, {1, 0}, o).Distinctness(), 0.9);
+  const OverlapPeak both = SearchShift(*f, two_rows, {1, 0}, o);
+  EXPECT_LT(both.Distinctness(), 0.1);
+  EXPECT_GT(both.Prominence(), 0.3);  // the old test alone would have trusted it
 }
 
 TEST(OverlapSearchTest, FindsAShiftToAFractionOfACellAndSeesAFlatScore) {

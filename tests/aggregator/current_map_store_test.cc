@@ -94,6 +94,17 @@ TEST(CurrentMapStoreTest, CandidatesLeaveTheMapAlone) {
   EXPECT_EQ(store.current_map().cells(), Map().cells());
 }
 
+TEST(CurrentMapStoreTest, ACandidateSeenAgainIsRenewedButNoObstacleIs) {
+  CurrentMapStore store(Map(), {});
+  ASSERT_TRUE(store.Apply(Commit(1, {{500, CellChangeKind::kCandidate}})).ok());
+  ASSERT_TRUE(store.Apply(Commit(2, {{500, CellChangeKind::kCandidate}}, 2)).ok());
+  EXPECT_EQ(store.candidates().at(500).start_s, 2.0);  // the later map's span
+  EXPECT_EQ(store.candidates().at(500).end_s, 4.0);
+  ASSERT_TRUE(store.Apply(Commit(3, {{600, CellChangeKind::kAdded}}, 3)).ok());
+  EXPECT_EQ(store.Apply(Commit(4, {{600, CellChangeKind::kCandidate}}, 4)).status().code(),
+            core::StatusCode::kFailedPrecondition);
+}
+
 TEST(MergeCommitTest, RoundTripAndCorruption) {
   const MergeCommit c = Commit(7, {{3, CellChangeKind::kAdded}, {9, CellChangeKind::kCandidate}});
   const std::vector<uint8_t> bytes = EncodeCommit(c);

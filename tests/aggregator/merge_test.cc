@@ -80,6 +80,23 @@ TEST_F(MergeTest, AnObstacleNeedsASecondMapOfAnotherTime) {
   EXPECT_TRUE(store_.candidates().empty());
 }
 
+// A person walking back and forth is at the same place again later, and no map need have seen
+// the place free in between: a sighting more than confirm_max_gap_s later starts afresh.
+TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  Commit(Plan(e, {0, 3}), {0, 3});
+  const MergePlan late = Plan(e, {30, 33});  // 27 s after the first map: too late
+  EXPECT_EQ(late.added, 0);
+  EXPECT_EQ(late.candidates, 9);
+  Commit(late, {30, 33});
+  EXPECT_EQ(store_.candidates().at(9 * 20 + 9).start_s, 30.0);
+  EXPECT_EQ(Plan(e, {36, 39}).added, 9);  // 3 s after the renewed sighting
+  options_.confirm_max_gap_s = 40.0;      // with a longer window the old sighting confirms
+  EXPECT_EQ(Plan(e, {30, 33}).added, 0);  // (the renewed one lies too close in time)
+  options_.confirm_max_gap_s = 20.0;
+}
+
 TEST_F(MergeTest, ACandidateSeenFreeIsDropped) {
   PlacedEvidence e = Evidence();
   Set(e, 8, 8, 10, 10, kHit);
@@ -130,6 +147,24 @@ TEST_F(MergeTest, RemovalNeedsTheWholeNeighbourhoodSeenFree) {
   EXPECT_LT(Plan(e, {20, 30}).removed, 12);
 }
 
+// An obstacle still there flickers at its edge: a hit two cells from a semi-static cell keeps
+// it (removal_clearance_cells = 2); with a clearance of one cell it would be removed.
+TEST_F(MergeTest, RemovalKeepsCellsWithinTheClearanceOfAHit) {
+  options_.confirmations = 1;
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 11, 10, kHit);
+  Commit(Plan(e, {0, 10}), {0, 10});
+  ASSERT_EQ(Semi(), 12);
+  e = Evidence();
+  Set(e, 6, 6, 15, 12, kFree);
+  Set(e, 13, 9, 13, 9, kHit);  // an isolated return two cells east of column 11
+  const MergePlan kept = Plan(e, {20, 30});
+  EXPECT_EQ(kept.removed, 9);  // columns 8-10 go, column 11 stays
+  for (const CellChange& c : kept.changes) EXPECT_LT(c.cell % 20, 11) << c.cell;
+  options_.removal_clearance_cells = 1;
+  EXPECT_EQ(Plan(e, {20, 30}).removed, 12);
+}
+
 TEST(MergeOptionsTest, ValidateNamesTheBadField) {
   MergeOptions o;
   o.confirmations = 3;
@@ -137,6 +172,9 @@ TEST(MergeOptionsTest, ValidateNamesTheBadField) {
   o = {};
   o.remove_max_log_odds = 1;
   EXPECT_NE(o.Validate().message().find("remove_max_log_odds"), std::string::npos);
+  o = {};
+  o.confirm_max_gap_s = o.confirm_min_gap_s;
+  EXPECT_NE(o.Validate().message().find("confirm_max_gap_s"), std::string::npos);
 }
 
 // The test: a removal clears the pallet but not the wall behind it.

@@ -75,5 +75,22 @@ TEST_F(TruthTempMapPipelineTest, SameSeedSameRunAndBadOptionsAreRefused) {
   EXPECT_FALSE(MakeTruthTempMapPipeline(*world_, options).ok());
 }
 
+TEST(CoverAnchorErrorsTest, WidensWhatMustCoverTheAnchorErrorAndNeverNarrows) {
+  aggregator::AggregatorOptions o;
+  const aggregator::AggregatorOptions defaults;
+  CoverAnchorErrors(0.3, 3.0 * M_PI / 180, o);
+  EXPECT_NEAR(o.confidence.max_correction_m, std::max(0.75, defaults.confidence.max_correction_m),
+              1e-12);
+  EXPECT_NEAR(o.alignment.overlap.range_m, std::max(0.5, defaults.alignment.overlap.range_m),
+              1e-12);
+  CoverAnchorErrors(0.6, 5.0 * M_PI / 180, o);
+  EXPECT_NEAR(o.confidence.max_correction_m, 1.5, 1e-12);
+  EXPECT_NEAR(o.confidence.max_correction_rad, 10.0 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(o.alignment.overlap.range_m, 0.8, 1e-12);
+  CoverAnchorErrors(0.0, 0.0, o);  // never narrows
+  EXPECT_NEAR(o.alignment.overlap.range_m, 0.8, 1e-12);
+  EXPECT_TRUE(o.Validate().ok());
+}
+
 }  // namespace
 }  // namespace fleetmap::eval

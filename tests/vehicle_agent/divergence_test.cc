@@ -73,6 +73,9 @@ TEST(DivergenceTest, WarmUpStartsFromTheRunningMean) {
 TEST(DivergenceTest, HysteresisNeedsAClearDivergenceAndHoldsTheMap) {
   DivergenceOptions o;
   o.warm_up = false;
+  o.start_above = 0.1;  // the mechanism, at thresholds apart from the defaults' 0.05 / 0.025
+  o.stop_below = 0.05;
+  o.min_duration_s = 2.0;
   DivergenceDetector detector(o);
   double t = 0.0;
   auto feed = [&](double w, int n) {

@@ -93,7 +93,8 @@ TEST(TempMapBuilderTest, TheMapIsCroppedToWhatWasSeen) {
 TEST(TempMapBuilderTest, ClosesWhenTheVehicleNearsTheEdgeOrTheTimeIsUp) {
   TempMapBuilderOptions options;
   options.mapper.map.size_m = 12.0;
-  options.edge_margin_m = 4.0;  // 2 m of travel from the centre is all it allows
+  options.edge_margin_m = 4.0;    // 2 m of travel from the centre is all it allows
+  options.max_duration_s = 60.0;  // the edge closes it, not the time
   const sim::World world = LivingLab();
   sim::Simulator simulator(&world);
   TempMapBuilder builder(options);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "tools/eval/tile_transport.h"
+
 namespace fleetmap::eval {
 namespace {
 
@@ -75,9 +77,20 @@ class AgentsPipeline : public Pipeline {
     record.tempmap_seq = map.sequence;
     record.closed_s = map.end_s;
     record.merged_s = now_s;  // in-process: merged as soon as closed
-    // Where the map truly lies: the grid's corner placed by the vehicle's true start pose.
-    record.true_origin = world_.VehicleStateAt(v, map.start_s).pose * map.grid.geometry().origin();
-    auto report = aggregator_.Submit(map, now_s);
+    // Where the map truly lies: the grid's corner placed by the vehicle's true pose at the
+    // map's first scan, which defines its frame T (a map split from the one before starts at
+    // the scan after the split, later than start_s).
+    const double t0 =
+        map.trajectory_in_temp.empty() ? map.start_s : map.trajectory_in_temp.front().stamp_s;
+    record.true_origin = world_.VehicleStateAt(v, t0).pose * map.grid.geometry().origin();
+    // The aggregator gets what travels: the map cut into tiles and put together again.
+    auto received = AsReceived(map);
+    if (!received.ok()) {
+      record.reason = received.status().ToString();
+      run_.merges.push_back(record);
+      return;
+    }
+    auto report = aggregator_.Submit(*received, now_s);
     if (!report.ok()) {
       record.reason = report.status().ToString();
       run_.merges.push_back(record);

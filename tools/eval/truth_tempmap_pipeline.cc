@@ -1,5 +1,6 @@
 #include "tools/eval/truth_tempmap_pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -206,9 +207,21 @@ core::Status TruthTempMapOptions::Validate() const {
   return core::OkStatus();
 }
 
-core::Result<std::unique_ptr<Pipeline>> MakeTruthTempMapPipeline(
-    const sim::World& world, const TruthTempMapOptions& options) {
-  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+void CoverAnchorErrors(double max_m, double max_rad, aggregator::AggregatorOptions& options) {
+  // 2.5 times the error leaves room for a temporary map's own bend; the search reaches 0.2 m
+  // past the error (the overlap peak must not lie at the end of its range).
+  auto& c = options.confidence;
+  c.max_correction_m = std::max(c.max_correction_m, 2.5 * max_m);
+  c.max_correction_rad = std::max(c.max_correction_rad, 2.0 * max_rad);
+  auto& range = options.alignment.overlap.range_m;
+  range = std::max(range, max_m + 0.2);
+}
+
+core::Result<std::unique_ptr<Pipeline>> MakeTruthTempMapPipeline(const sim::World& world,
+                                                                 const TruthTempMapOptions& given) {
+  FLEETMAP_RETURN_IF_ERROR(given.Validate());
+  TruthTempMapOptions options = given;
+  CoverAnchorErrors(options.anchor_error_max_m, options.anchor_error_max_rad, options.aggregator);
   auto aggregator = aggregator::Aggregator::Create(world.static_map(), options.aggregator);
   if (!aggregator.ok()) return aggregator.status();
   return std::unique_ptr<Pipeline>(

@@ -42,7 +42,14 @@ struct TruthTempMapOptions {
   core::Status Validate() const;
 };
 
+// The aggregator's defaults expect anchors from a localized vehicle (a few centimetres off).
+// This widens what must cover the anchor's error (the correction limits and the first search
+// along the lines) to anchors off by up to `max_m` and `max_rad`, never narrowing a setting.
+void CoverAnchorErrors(double max_m, double max_rad, aggregator::AggregatorOptions& options);
+
 // `world` outlives the pipeline. InvalidArgument for bad options, or the aggregator's error.
+// The aggregator runs with options.aggregator widened by CoverAnchorErrors for the pipeline's
+// own anchor errors.
 core::Result<std::unique_ptr<Pipeline>> MakeTruthTempMapPipeline(
     const sim::World& world, const TruthTempMapOptions& options);
 
