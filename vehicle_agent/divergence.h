@@ -47,7 +47,7 @@ struct DivergenceOptions {
   // 0-2 false starts over runs of the study, 0.05 gave 7-8. 0.05 / 0.025 is what the map
   // needs: at 0.1 the parked robots of the addition and removal scenarios (small, next to a
   // wall) never opened a map and removal scored F1 0.67-0.79; at 0.06-0.07 one of three runs
-  // still missed one (0.84); at 0.05 all were seen (0.97). A false start costs bandwidth,
+  // still missed one (0.84); at 0.05 all were seen (0.96-1.0). A false start costs bandwidth,
   // not map quality: the merge adds nothing a temporary map of an unchanged place holds
   // (docs/aggregator.md, "Figures").
   double start_above = 0.05;
