@@ -1,9 +1,13 @@
 // fleetmap-carmen-eval: runs the temporary-map builder's scan matcher over a CARMEN log and
 // scores its trajectory with the SLAM benchmark's relations, next to the log's odometry.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -33,6 +37,8 @@ options:
   --resolution M       finest cell size, metres                   [0.05]
   --levels N           resolution levels                          [3]
   --png FILE           draw the log's map at the estimated poses
+  --trajectory FILE    score the trajectory in FILE (lines `t x y theta`, e.g. another SLAM
+                       system's) with the same relations instead of running our matcher
   --interpolate-odometry 0|1
                        odometry at each scan's time from the ODOM lines, rather than the
                        last ODOM before it (what FLASER lines carry)  [0]
@@ -45,7 +51,7 @@ options:
 )";
 
 struct Args {
-  std::string carmen, relations, name, png;
+  std::string carmen, relations, name, png, trajectory;
   double window_s = 60, lifetime_s = 0, size_m = 120, resolution_m = 0.05;
   int levels = 3;
   bool interpolate_odometry = false;
@@ -66,6 +72,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.name = v;
       else if (arg == "--png")
         a.png = v;
+      else if (arg == "--trajectory")
+        a.trajectory = v;
       else if (arg == "--window")
         a.window_s = std::stod(v);
       else if (arg == "--map-lifetime")
@@ -136,6 +144,26 @@ std::vector<carmen::TimedPose> RunMatcher(const carmen::CarmenLog& log, const Ar
   return trajectory;
 }
 
+// Lines `t x y theta`, sorted by time for ScoreRelations.
+core::Result<std::vector<carmen::TimedPose>> ReadTrajectory(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return core::NotFound(path + ": cannot open");
+  std::vector<carmen::TimedPose> trajectory;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream f(line);
+    carmen::TimedPose p;
+    if (!(f >> p.stamp_s >> p.pose.x_m >> p.pose.y_m >> p.pose.theta_rad) ||
+        !std::isfinite(p.stamp_s + p.pose.x_m + p.pose.y_m + p.pose.theta_rad))
+      return core::InvalidArgument(path + ": line " + std::to_string(n) + ": not `t x y theta`");
+    trajectory.push_back(p);
+  }
+  std::stable_sort(trajectory.begin(), trajectory.end(),
+                   [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
+  return trajectory;
+}
+
 // Every scan inserted at its estimated pose into one grid covering the whole trajectory.
 core::Status DrawMap(const carmen::CarmenLog& log, const std::vector<carmen::TimedPose>& trajectory,
                      const std::string& path) {
@@ -188,9 +216,20 @@ int main(int argc, char** argv) {
                args.carmen.c_str(), log->lasers.size(), interpolated, relations->size());
   std::vector<carmen::TimedPose> odometry;
   for (const auto& r : log->lasers) odometry.push_back({r.stamp_s, r.odom_pose});
+  const std::string win = "win" + std::to_string(static_cast<int>(args.window_s));
+  if (!args.trajectory.empty()) {
+    auto external = ReadTrajectory(args.trajectory);
+    if (!external.ok())
+      return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n",
+                          external.status().ToString().c_str()),
+             1;
+    std::fprintf(stderr, "  %s: %zu poses\n", args.trajectory.c_str(), external->size());
+    Print(name, "all", carmen::ScoreRelations(*relations, *external));
+    Print(name, win, carmen::ScoreRelations(*relations, *external, args.window_s));
+    return 0;
+  }
   double ms_per_scan = 0;
   const auto matched = RunMatcher(*log, args, ms_per_scan);
-  const std::string win = "win" + std::to_string(static_cast<int>(args.window_s));
   Print(name, "all", carmen::ScoreRelations(*relations, matched));
   Print(name, win, carmen::ScoreRelations(*relations, matched, args.window_s));
   Print(name, "odom.all", carmen::ScoreRelations(*relations, odometry));

@@ -1,0 +1,144 @@
+// fleetmap-bench-tempmap-publisher: N simulated vehicles, each closing a temporary map every
+// PERIOD seconds, for the aggregator's scaling benchmark (bench/aggregator_scaling_bench.sh).
+// The temporary maps are real ones: every complete map (all its tiles) that the agents sent in
+// a recorded fleet run (an uplink LCM log of scripts/fleet_run.sh). Vehicle v of N sends its
+// k-th map at v * PERIOD / N + k * PERIOD seconds, the recorded map (v + k) modulo their
+// count, renamed: vehicle id `benchNNN`, sequence k + 1, times moved to now; all its tiles at
+// once on TEMPMAP_<id>, once (on loopback nothing is lost, so no resends are needed).
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <lcm/lcm-cpp.hpp>
+#include <map>
+#include <set>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "fleetmap/tempmap_tile_t.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: fleetmap-bench-tempmap-publisher --log UPLINK.lcmlog --url URL [options]\n"
+    "  --vehicles N    simulated vehicles                         [10]\n"
+    "  --period S      each vehicle closes a map every S seconds  [10]\n"
+    "  --duration S    stop after S seconds                       [60]\n"
+    "Prints one line at the end: maps and tiles sent.\n";
+
+volatile std::sig_atomic_t g_stop = 0;
+void OnSignal(int) { g_stop = 1; }
+
+using Map = std::vector<fleetmap::tempmap_tile_t>;  // every tile, by index
+
+// Every complete temporary map in the log, in the order its last tile arrived.
+std::vector<Map> ReadMaps(const std::string& path) {
+  std::vector<Map> complete;
+  using Key = std::pair<std::string, int32_t>;  // (vehicle, sequence)
+  std::map<Key, std::map<int32_t, fleetmap::tempmap_tile_t>> partial;
+  std::set<Key> taken;  // complete already: later tiles are resends
+  lcm::LogFile log(path, "r");
+  if (!log.good()) return complete;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    if (e->channel.rfind("TEMPMAP_", 0) != 0 || e->channel == "TEMPMAP_ACK") continue;
+    fleetmap::tempmap_tile_t t;
+    if (t.decode(e->data, 0, static_cast<int>(e->datalen)) != static_cast<int>(e->datalen) ||
+        t.tile_count <= 0 || t.tile_index < 0 || t.tile_index >= t.tile_count)
+      continue;
+    const Key key{t.vehicle_id, t.tempmap_seq};
+    if (taken.count(key) != 0) continue;
+    auto& tiles = partial[key];
+    tiles.emplace(t.tile_index, t);
+    if (static_cast<int32_t>(tiles.size()) < t.tile_count) continue;
+    Map map;
+    for (auto& [index, tile] : tiles) map.push_back(tile);
+    complete.push_back(std::move(map));
+    partial.erase(key);
+    taken.insert(key);
+  }
+  return complete;
+}
+
+int64_t NowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string log_path, url;
+  int vehicles = 10;
+  double period_s = 10, duration_s = 60;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help") return std::fputs(kUsage, stdout), 0;
+    if (i + 1 >= argc) return std::fputs(kUsage, stderr), 2;
+    const std::string v = argv[++i];
+    if (arg == "--log")
+      log_path = v;
+    else if (arg == "--url")
+      url = v;
+    else if (arg == "--vehicles")
+      vehicles = std::atoi(v.c_str());
+    else if (arg == "--period")
+      period_s = std::atof(v.c_str());
+    else if (arg == "--duration")
+      duration_s = std::atof(v.c_str());
+    else
+      return std::fputs(kUsage, stderr), 2;
+  }
+  if (log_path.empty() || url.empty() || vehicles < 1 || !(period_s > 0) || !(duration_s > 0))
+    return std::fputs(kUsage, stderr), 2;
+  const std::vector<Map> maps = ReadMaps(log_path);
+  if (maps.empty())
+    return std::fprintf(stderr, "tempmap-publisher: %s: no complete temporary map\n",
+                        log_path.c_str()),
+           1;
+  lcm::LCM lcm(url);
+  if (!lcm.good()) return std::fprintf(stderr, "tempmap-publisher: %s: no LCM\n", url.c_str()), 1;
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  size_t tiles_in_maps = 0;
+  for (const Map& m : maps) tiles_in_maps += m.size();
+  std::fprintf(stderr, "tempmap-publisher: %zu recorded maps (%.1f tiles each), %d vehicles\n",
+               maps.size(), double(tiles_in_maps) / maps.size(), vehicles);
+
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  // (due time in s from start, vehicle), earliest first.
+  std::multimap<double, int> due;
+  for (int v = 0; v < vehicles; ++v) due.emplace(v * period_s / vehicles, v);
+  std::vector<int> sent(vehicles, 0);
+  int64_t maps_sent = 0, tiles_sent = 0;
+  while (!g_stop) {
+    const auto [at_s, v] = *due.begin();
+    if (at_s >= duration_s) break;
+    std::this_thread::sleep_until(
+        start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(at_s)));
+    if (g_stop) break;
+    due.erase(due.begin());
+    const Map& map = maps[(v + sent[v]) % maps.size()];
+    char id[16];
+    std::snprintf(id, sizeof id, "bench%03d", v);
+    const int64_t now = NowUtime();
+    for (fleetmap::tempmap_tile_t tile : map) {
+      tile.vehicle_id = id;
+      tile.tempmap_seq = sent[v] + 1;
+      tile.start_utime = now - (tile.end_utime - tile.start_utime);
+      tile.end_utime = now;
+      tile.utime = now;
+      lcm.publish(std::string("TEMPMAP_") + id, &tile);
+      ++tiles_sent;
+    }
+    ++sent[v];
+    ++maps_sent;
+    due.emplace(at_s + period_s, v);
+  }
+  std::printf("tempmap-publisher: %lld maps, %lld tiles sent\n", static_cast<long long>(maps_sent),
+              static_cast<long long>(tiles_sent));
+  return 0;
+}
