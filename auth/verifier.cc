@@ -20,6 +20,22 @@ const char* VerdictName(Verdict verdict) {
   return "unknown";
 }
 
+const char* RefusalText(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kAccepted:
+      return "accepted";
+    case Verdict::kUnsigned:
+      return "an unsigned message refused: this fleet has a key";
+    case Verdict::kForged:
+      return "a message whose MAC is wrong (another key, or altered) refused";
+    case Verdict::kWrongSender:
+      return "a message signed by a sender that does not own this channel refused";
+    case Verdict::kReplayed:
+      return "a replayed message (its sequence number was seen before) refused";
+  }
+  return "refused";
+}
+
 std::vector<std::pair<std::string, int64_t>> Named(const AuthCounters& c) {
   return {{"auth_verified", c.auth_verified}, {"auth_unsigned", c.auth_unsigned},
           {"auth_forged", c.auth_forged},     {"auth_wrong_sender", c.auth_wrong_sender},

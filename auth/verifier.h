@@ -19,6 +19,8 @@ namespace fleetmap::auth {
 
 enum class Verdict { kAccepted, kUnsigned, kForged, kWrongSender, kReplayed };
 const char* VerdictName(Verdict verdict);  // "accepted", "unsigned", ...
+// Why a message was refused, in words for a log line.
+const char* RefusalText(Verdict verdict);
 
 struct AuthCounters {
   int64_t auth_verified = 0;      // accepted with a key: MAC, sender and sequence right

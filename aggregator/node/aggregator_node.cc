@@ -1,6 +1,7 @@
 #include "aggregator/node/aggregator_node.h"
 
 #include <algorithm>
+#include <chrono>
 #include <set>
 
 #include "aggregator/node/map_hash.h"
@@ -51,7 +52,15 @@ AggregatorNode::AggregatorNode(Aggregator aggregator, AggregatorNodeOptions opti
       acks_(options_.pending_ack_interval_s),
       requests_(options_.keyframe_min_interval_s),
       next_status_s_(now_s),
-      next_keyframe_s_(now_s + options_.keyframe_period_s) {
+      next_keyframe_s_(now_s + options_.keyframe_period_s),
+      // Sequence numbers follow the wall clock across restarts, whatever time the node
+      // is handed (auth/signer.h).
+      signer_(options_.fleet_key, options_.process_name,
+              auth::FirstSequence(
+                  std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                      .count())),
+      verifier_(options_.fleet_key),
+      limits_(options_.limits) {
   handled_.LoadMerged(aggregator_.store().provenance());
 }
 
@@ -96,17 +105,58 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
   ++counters_.messages;
   if (size < 0 || (size > 0 && data == nullptr)) {
     Refuse("no payload", counters_.malformed_messages, channel + ": a message without payload");
-  } else if (channel == lcmtypes::kTempMapAckChannel) {
+    return;
+  }
+  if (size > options_.limits.max_received_bytes) {
+    Refuse("oversize received", counters_.oversize_received,
+           channel.substr(0, 80) + ": a message of " + std::to_string(size) +
+               " bytes refused (limits.max_received_bytes " +
+               std::to_string(options_.limits.max_received_bytes) + ")");
+    return;
+  }
+  const bool tile = StartsWith(channel, kTempMapPrefix);
+  if (channel == lcmtypes::kTempMapAckChannel) {
     ++counters_.ignored_messages;  // matches TEMPMAP_.*: our own, when both links share a group
-  } else if (StartsWith(channel, kTempMapPrefix)) {
-    OnTile(channel, data, size, now_s);
-  } else if (channel == lcmtypes::kMapRequestChannel) {
-    OnRequest(data, size);
-  } else {
+    return;
+  }
+  if (!tile && channel != lcmtypes::kMapRequestChannel) {
     Refuse(
         "unknown channel", counters_.unknown_channel,
         "message on channel '" + channel.substr(0, 80) + "', which the aggregator does not read");
+    return;
   }
+  // TEMPMAP_<id> belongs to vehicle <id>; any member of the fleet may ask for maps.
+  const std::string owner = tile ? channel.substr(std::string(kTempMapPrefix).size()) : "";
+  auth::Opened opened;
+  const auth::Verdict verdict = verifier_.Open(channel, data, size, owner, &opened);
+  if (verdict != auth::Verdict::kAccepted) {
+    Refuse(std::string("auth: ") + auth::VerdictName(verdict), counters_.auth_refused,
+           channel.substr(0, 80) + ": " + auth::RefusalText(verdict));
+    return;
+  }
+  if (tile) {
+    OnTile(channel, opened.data, opened.size, now_s);
+  } else {
+    OnRequest(opened.data, opened.size);
+  }
+}
+
+bool AggregatorNode::Throttled(const std::string& vehicle, double now_s) {
+  if (limits_.AllowTile(vehicle, now_s)) return false;
+  ++counters_.throttled_tiles;
+  if (limits_.FirstThrottle(vehicle)) {
+    log_.Warning("vehicle '" + vehicle.substr(0, kMaxVehicleIdBytes) + "' sends more than " +
+                 std::to_string(options_.limits.tiles_per_s) +
+                 " tiles/s: throttled, its tiles over the rate are dropped (other vehicles are "
+                 "not affected; counted in throttled_tiles)");
+  }
+  return true;
+}
+
+int AggregatorNode::PendingMaps(const std::string& vehicle) const {
+  int n = 0;
+  for (const auto& [key, in] : incoming_) n += key.vehicle_id == vehicle;
+  return n;
 }
 
 void AggregatorNode::Refuse(const std::string& cause, int64_t& counter, const std::string& line) {
@@ -134,6 +184,9 @@ void AggregatorNode::OnTile(const std::string& channel, const void* data, int si
            channel + ": invalid tile: " + tile.status().ToString());
     return;
   }
+  // Counted once the tile is authentic and valid: forged or broken tiles on a vehicle's
+  // channel must not use up its rate.
+  if (Throttled(suffix, now_s)) return;
   const auto* bytes = static_cast<const uint8_t*>(data);
   AddTile(*msg, *tile, std::vector<uint8_t>(bytes, bytes + size), /*from_spool=*/false, now_s);
 }
@@ -155,6 +208,14 @@ void AggregatorNode::AddTile(const fleetmap::tempmap_tile_t& msg, const core::Te
     const Retry again = retry->second;
     retry_.erase(retry);
     Complete(key, again.map, again.tile_count, map_s, now_s);
+    return;
+  }
+  if (!incoming_.count(key) &&
+      PendingMaps(key.vehicle_id) >= options_.limits.max_pending_maps_per_vehicle) {
+    Refuse("TEMPMAP: vehicle's maps full", counters_.vehicle_maps_full,
+           "vehicle '" + key.vehicle_id + "' has " +
+               std::to_string(options_.limits.max_pending_maps_per_vehicle) +
+               " incomplete temporary maps; " + key.ToString() + " has to wait for its resend");
     return;
   }
   if (!incoming_.count(key) &&
@@ -194,6 +255,14 @@ void AggregatorNode::AddTile(const fleetmap::tempmap_tile_t& msg, const core::Te
 
 void AggregatorNode::Complete(const MapKey& key, const core::TempMap& map, int32_t tile_count,
                               double map_s, double now_s) {
+  if (!limits_.AllowMerge(key.vehicle_id, now_s)) {
+    Refuse("TEMPMAP: merge rate", counters_.throttled_merges,
+           "vehicle '" + key.vehicle_id + "' completes more than " +
+               std::to_string(options_.limits.merges_per_min) +
+               " maps per minute: " + key.ToString() + " waits unacknowledged for a resend");
+    if (static_cast<int>(retry_.size()) < options_.max_retry_maps) retry_[key] = {map, tile_count};
+    return;
+  }
   auto report = aggregator_.Submit(map, map_s);
   if (!report.ok() && report.status().code() == core::StatusCode::kIoError) {
     ++counters_.persist_errors;
@@ -387,8 +456,11 @@ void AggregatorNode::SendStatus(double now_s) {
   s.software_version = options_.software_version;
   s.map_version = aggregator_.store().version();
   s.state = state();
+  s.authenticated = verifier_.enabled();
   s.counters = Named(counters_);
   s.counters.emplace_back("incomplete_maps", static_cast<int64_t>(incoming_.size()));
+  s.counters.emplace_back("throttled_vehicles", limits_.throttled_vehicles());
+  for (const auto& named : auth::Named(verifier_.counters())) s.counters.push_back(named);
   Send(Link::kDownlink, lcmtypes::StatusChannel(options_.process_name),
        StatusMessage(s, lcmtypes::ToUtime(now_s)));
 }
@@ -398,6 +470,7 @@ void AggregatorNode::Send(Link link, const std::string& channel, const T& messag
   if (!publisher_) return;
   std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
   message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  signer_.Seal(channel, bytes);
   if (static_cast<int>(bytes.size()) > options_.max_message_bytes) {
     Refuse("oversize " + channel, counters_.oversize_messages,
            channel + ": a message of " + std::to_string(bytes.size()) + " bytes (more than " +

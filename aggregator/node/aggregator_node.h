@@ -35,6 +35,9 @@
 #include "aggregator/node/node_options.h"
 #include "aggregator/node/request_queue.h"
 #include "aggregator/node/tile_spool.h"
+#include "aggregator/node/vehicle_limits.h"
+#include "auth/signer.h"
+#include "auth/verifier.h"
 #include "core/temp_map_tiles.h"
 #include "fleetmap/tempmap_tile_t.hpp"
 
@@ -65,6 +68,10 @@ class AggregatorNode {
   // The largest message sent so far on each channel, bytes.
   const std::map<std::string, size_t>& largest_messages() const { return largest_; }
   size_t incomplete_maps() const { return incoming_.size(); }
+  // A fleet key is configured: what is sent is signed, what is received must be.
+  bool authenticated() const { return verifier_.enabled(); }
+  const auth::AuthCounters& auth_counters() const { return verifier_.counters(); }
+  int throttled_vehicles() const { return limits_.throttled_vehicles(); }
   // The line the process ends with (map_hash.h).
   std::string FinalLine() const;
 
@@ -89,6 +96,8 @@ class AggregatorNode {
                 double now_s);
   void OnRequest(const void* data, int size);
   void Refuse(const std::string& cause, int64_t& counter, const std::string& line);
+  bool Throttled(const std::string& vehicle, double now_s);
+  int PendingMaps(const std::string& vehicle) const;
 
   void SendPending(const MapKey& key, double now_s);
   void SendFinal(const MapKey& key, int32_t tile_count, int8_t outcome, const std::string& reason,
@@ -117,6 +126,9 @@ class AggregatorNode {
   double next_keyframe_s_;
   NodeCounters counters_;
   std::map<std::string, size_t> largest_;
+  auth::Signer signer_;
+  auth::Verifier verifier_;
+  VehicleLimits limits_;
 };
 
 }  // namespace fleetmap::aggregator::node

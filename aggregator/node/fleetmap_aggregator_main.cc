@@ -13,8 +13,9 @@
 #include "aggregator/node/lcm_links.h"
 #include "aggregator/node/log_replay.h"
 #include "aggregator/node/node_config.h"
-#include "core/map_io.h"
+#include "auth/key.h"
 #include "core/codecs/map_render.h"
+#include "core/map_io.h"
 
 namespace {
 
@@ -31,6 +32,9 @@ options:
   --config FILE        YAML settings (docs/aggregator_process.md); the flags below override it
   --state-dir DIR      keep the current map (snapshot + journal) and acknowledged tiles here,
                        and restore them at start                       [none: memory only]
+  --key-file FILE      the fleet key (docs/security.md): sign what is sent, accept only
+                       messages signed by their channel's owner; the file must be chmod 600
+                                                                        [none: unauthenticated]
   --uplink-url URL     where vehicles send          [udpm://239.255.76.67:7667?ttl=0]
   --downlink-url URL   where the aggregator answers [udpm://239.255.76.68:7668?ttl=0]
   --final-map FILE     at exit, write the current map there (map_server YAML + PGM) and a
@@ -52,7 +56,7 @@ volatile std::sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
 
 struct Args {
-  std::string map, config, state_dir, uplink_url, downlink_url, final_map;
+  std::string map, config, state_dir, uplink_url, downlink_url, final_map, key_file;
   double duration_s = -1.0;
   std::vector<std::string> replay;
   bool quiet = false;
@@ -67,6 +71,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.map = argv[++i];
       } else if (arg == "--config" && has_value) {
         a.config = argv[++i];
+      } else if (arg == "--key-file" && has_value) {
+        a.key_file = argv[++i];
       } else if (arg == "--state-dir" && has_value) {
         a.state_dir = argv[++i];
       } else if (arg == "--uplink-url" && has_value) {
@@ -110,6 +116,12 @@ core::Result<AggregatorProcessConfig> Configure(const Args& args) {
   if (!args.uplink_url.empty()) config.uplink_url = args.uplink_url;
   if (!args.downlink_url.empty()) config.downlink_url = args.downlink_url;
   config.node.software_version = FLEETMAP_VERSION;
+  if (!args.key_file.empty()) config.key_file = args.key_file;
+  if (!config.key_file.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(config.node.fleet_key, auth::ReadKeyFile(config.key_file));
+  } else if (!args.quiet) {
+    std::fprintf(stderr, "fleetmap-aggregator: no fleet key: messages are not authenticated\n");
+  }
   // Acknowledged tiles are kept only by a live run with a state folder: a replay sends no
   // acknowledgement.
   if (!config.state_dir.empty() && args.replay.empty())

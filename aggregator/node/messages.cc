@@ -62,7 +62,7 @@ fleetmap::status_t StatusMessage(const StatusFields& f, int64_t utime) {
   m.software_version = f.software_version;
   m.map_version = WireVersion(f.map_version);
   m.state = f.state;
-  m.authenticated = false;  // nothing on the map transport is authenticated yet
+  m.authenticated = f.authenticated;
   for (const auto& [name, value] : f.counters) {
     m.counter_names.push_back(name);
     m.counter_values.push_back(value);

@@ -42,6 +42,7 @@ struct StatusFields {
   std::string software_version;
   uint64_t map_version = 0;
   std::string state;
+  bool authenticated = false;  // a fleet key is configured: peers are authenticated
   NamedCounters counters;
 };
 fleetmap::status_t StatusMessage(const StatusFields& fields, int64_t utime);

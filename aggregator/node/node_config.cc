@@ -67,6 +67,22 @@ core::Status ReadAssembler(const YamlReader& r, const YAML::Node& n, core::Assem
   return Read(r, n, "assembler", "max_tiles", o.max_tiles);
 }
 
+core::Status ReadLimits(const YamlReader& r, const YAML::Node& n, VehicleLimitOptions& o) {
+  FLEETMAP_RETURN_IF_ERROR(
+      OnlyKeys(r, n, "limits",
+               {"max_received_bytes", "max_pending_maps_per_vehicle", "tiles_per_s", "tile_burst",
+                "merges_per_min", "merge_burst", "max_vehicles"}));
+  if (!n) return core::OkStatus();
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "max_received_bytes", o.max_received_bytes));
+  FLEETMAP_RETURN_IF_ERROR(
+      Read(r, n, "limits", "max_pending_maps_per_vehicle", o.max_pending_maps_per_vehicle));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "tiles_per_s", o.tiles_per_s));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "tile_burst", o.tile_burst));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "merges_per_min", o.merges_per_min));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "merge_burst", o.merge_burst));
+  return Read(r, n, "limits", "max_vehicles", o.max_vehicles);
+}
+
 core::Status ReadMerge(const YamlReader& r, const YAML::Node& n, MergeOptions& o) {
   const std::string s = "aggregator.merge";
   FLEETMAP_RETURN_IF_ERROR(
@@ -130,8 +146,9 @@ core::Result<AggregatorProcessConfig> ParseProcessConfig(const std::string& yaml
   if (!reader.ok()) return reader.status();
   const YamlReader& r = *reader;
   const YAML::Node& root = r.root();
-  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(
-      r, root, "", {"uplink_url", "downlink_url", "state_dir", "node", "assembler", "aggregator"}));
+  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(r, root, "",
+                                    {"uplink_url", "downlink_url", "state_dir", "key_file", "node",
+                                     "assembler", "limits", "aggregator"}));
   AggregatorProcessConfig c = DefaultProcessConfig();
   FLEETMAP_ASSIGN_OR_RETURN(c.uplink_url,
                             r.GetOr<std::string>(root, "uplink_url", "uplink_url", c.uplink_url));
@@ -140,6 +157,10 @@ core::Result<AggregatorProcessConfig> ParseProcessConfig(const std::string& yaml
   FLEETMAP_ASSIGN_OR_RETURN(c.state_dir,
                             r.GetOr<std::string>(root, "state_dir", "state_dir", c.state_dir));
   if (!c.state_dir.empty()) c.state_dir = r.Resolve(c.state_dir);
+  FLEETMAP_ASSIGN_OR_RETURN(c.key_file,
+                            r.GetOr<std::string>(root, "key_file", "key_file", c.key_file));
+  if (!c.key_file.empty()) c.key_file = r.Resolve(c.key_file);
+  FLEETMAP_RETURN_IF_ERROR(ReadLimits(r, root["limits"], c.node.limits));
   FLEETMAP_RETURN_IF_ERROR(ReadNode(r, root["node"], c.node));
   FLEETMAP_RETURN_IF_ERROR(ReadAssembler(r, root["assembler"], c.node.assembler));
   FLEETMAP_RETURN_IF_ERROR(ReadAggregator(r, root["aggregator"], c.aggregator));

@@ -15,6 +15,9 @@ struct AggregatorProcessConfig {
   std::string uplink_url;    // where vehicles send; default lcmtypes::kDefaultUplinkUrl
   std::string downlink_url;  // where the aggregator answers; lcmtypes::kDefaultDownlinkUrl
   std::string state_dir;     // persistence folder; empty: memory only
+  // The fleet key file (docs/security.md), read into node.fleet_key by the process; empty:
+  // unauthenticated.
+  std::string key_file;
   AggregatorNodeOptions node;
   AggregatorOptions aggregator;
   core::Status Validate() const;

@@ -32,7 +32,12 @@ NamedCounters Named(const NodeCounters& c) {
           {"spool_errors", c.spool_errors},
           {"submit_errors", c.submit_errors},
           {"publish_failures", c.publish_failures},
-          {"oversize_messages", c.oversize_messages}};
+          {"oversize_messages", c.oversize_messages},
+          {"oversize_received", c.oversize_received},
+          {"throttled_tiles", c.throttled_tiles},
+          {"throttled_merges", c.throttled_merges},
+          {"vehicle_maps_full", c.vehicle_maps_full},
+          {"auth_refused", c.auth_refused}};
 }
 
 }  // namespace fleetmap::aggregator::node

@@ -40,6 +40,13 @@ struct NodeCounters {
   int64_t submit_errors = 0;      // the aggregator refused a commit (a bug): rejected
   int64_t publish_failures = 0;   // the transport refused a message
   int64_t oversize_messages = 0;  // published messages over max_message_bytes
+  // Bounds per vehicle (vehicle_limits.h) and the authentication (auth/verifier.h, whose
+  // counters follow these in STATUS).
+  int64_t oversize_received = 0;  // received messages over limits.max_received_bytes
+  int64_t throttled_tiles = 0;    // tiles of a vehicle over its tile rate: dropped
+  int64_t throttled_merges = 0;   // complete maps of a vehicle over its merge rate: wait
+  int64_t vehicle_maps_full = 0;  // a new map of a vehicle with too many incomplete ones
+  int64_t auth_refused = 0;       // messages the verifier refused (by cause: auth_*)
 };
 
 using NamedCounters = std::vector<std::pair<std::string, int64_t>>;

@@ -30,6 +30,7 @@ core::Status AggregatorNodeOptions::Validate() const {
   // Acknowledgements list tile indices as int16 (tempmap_ack_t).
   if (assembler.max_tiles > 32767)
     return core::InvalidArgument("assembler.max_tiles must be <= 32767");
+  FLEETMAP_RETURN_IF_ERROR(limits.Validate());
   return assembler.Validate().WithContext("assembler");
 }
 

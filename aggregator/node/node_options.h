@@ -3,8 +3,11 @@
 // this order.
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "aggregator/node/vehicle_limits.h"
+#include "auth/key.h"
 #include "core/temp_map_tiles.h"
 
 namespace fleetmap::aggregator::node {
@@ -34,6 +37,10 @@ struct AggregatorNodeOptions {
   // >= 1.
   int max_retry_maps = 32;
   core::AssemblerOptions assembler;  // bounds on temporary maps being received
+  VehicleLimitOptions limits;        // bounds per vehicle: sizes, rates, pending maps
+  // The fleet key (docs/security.md): every message sent is signed as process_name, and a
+  // message received counts only if its channel's owner signed it. None: unauthenticated.
+  std::optional<auth::Key> fleet_key;
   // Where tiles of incomplete maps are kept once acknowledged (PENDING), so that a restarted
   // aggregator still has them: the vehicle never resends a tile it saw acknowledged. Empty:
   // memory only. The process uses <state-dir>/incoming.

@@ -94,10 +94,13 @@ void FeedMessage(AgentNode& node, Link link, const std::string& channel, const T
 // Runs the world's simulator into the node (scans and odometry as SCAN_v1 / ODOM_v1
 // messages), ticking after every scan with now = the scan's time. Returns the true pose of
 // every scan by its utime.
-// Events before `from_s` are skipped.
+// Events before `from_s` are skipped. `vehicle_clock` (if given) maps simulated time to the
+// stamps the vehicle puts on its scans and odometry (a clock that jumps).
 inline std::map<int64_t, core::Pose2> DriveNode(
     const sim::World& world, AgentNode& node, double until_s,
-    const std::function<void(double t_s)>& after_tick = {}, double from_s = 0.0) {
+    const std::function<void(double t_s)>& after_tick = {}, double from_s = 0.0,
+    const std::function<double(double t_s)>& vehicle_clock = {}) {
+  const auto stamp = [&](double t) { return vehicle_clock ? vehicle_clock(t) : t; };
   std::map<int64_t, core::Pose2> truth;
   sim::Simulator simulator(&world);
   int32_t seq = 0;
@@ -106,11 +109,13 @@ inline std::map<int64_t, core::Pose2> DriveNode(
     if (t > until_s) break;
     if (t < from_s) continue;
     if (const auto* o = std::get_if<sim::OdometryEvent>(&*e)) {
-      const core::OdometrySample odom{o->stamp_s, o->odom_pose, o->v_mps, o->omega_radps};
+      const core::OdometrySample odom{stamp(o->stamp_s), o->odom_pose, o->v_mps, o->omega_radps};
       FeedMessage(node, Link::kSensor, "ODOM_v1", lcmtypes::ToMessage(odom, "v1"), t);
     } else if (const auto* s = std::get_if<sim::ScanEvent>(&*e)) {
-      FeedMessage(node, Link::kSensor, "SCAN_v1", lcmtypes::ToMessage(s->scan, "v1", seq++), t);
-      truth[lcmtypes::ToUtime(s->scan.stamp_s)] = s->true_base_pose;
+      core::LaserScan scan = s->scan;
+      scan.stamp_s = stamp(scan.stamp_s);
+      FeedMessage(node, Link::kSensor, "SCAN_v1", lcmtypes::ToMessage(scan, "v1", seq++), t);
+      truth[lcmtypes::ToUtime(scan.stamp_s)] = s->true_base_pose;
       node.Tick(t);
       if (after_tick) after_tick(t);
     }

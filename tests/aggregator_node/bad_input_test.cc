@@ -145,10 +145,12 @@ TEST_F(AggregatorNodeBadInputTest, UnknownChannelsAndOurOwnAcknowledgementsAreNo
 }
 
 TEST_F(AggregatorNodeBadInputTest, TooManyIncompleteMapsAreRefusedNotHeld) {
+  // Ten vehicles with four maps each (limits.max_pending_maps_per_vehicle): 40 maps.
   for (int32_t seq = 100; seq < 140; ++seq) {
     fleetmap::tempmap_tile_t t = Tile(0);
     t.tempmap_seq = seq;
-    Send("TEMPMAP_v1", Encode(t));
+    t.vehicle_id = "w" + std::to_string((seq - 100) / 4);
+    Send(lcmtypes::TempMapChannel(t.vehicle_id), Encode(t));
   }
   EXPECT_EQ(node_->incomplete_maps(), 32u);
   EXPECT_EQ(node_->counters().assembler_full, 8);

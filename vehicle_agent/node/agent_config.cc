@@ -282,6 +282,9 @@ AgentConfig::AgentConfig() {
   urls = {lcmtypes::kDefaultSensorUrl, lcmtypes::kDefaultUplinkUrl, lcmtypes::kDefaultDownlinkUrl};
   // An agent answers quickly when its scanner is away: the loop waits for connects.
   sick.client.connect_timeout_s = 0.5;
+  // ... and comes back within a second of the scanner's return (issue 9): the scanner sits on
+  // the vehicle's own Ethernet, so trying twice a second costs nothing.
+  sick.client.reconnect_backoff_max_s = 0.5;
   node.initial_pose = InitialPoseSource::kGlobal;
   node.software_version = FLEETMAP_VERSION;
 }
@@ -320,9 +323,9 @@ core::Result<AgentConfig> ParseAgentConfig(const std::string& yaml_text, const s
   const YAML::Node& root = r.root();
   FLEETMAP_RETURN_IF_ERROR(
       CheckKeys(r, root, "",
-                {"vehicle_id", "map", "state_dir", "final_map", "scanner_mount", "initial_pose",
-                 "urls", "inputs", "localization", "divergence", "builder", "outbox", "map_updates",
-                 "rates", "pose_link"}));
+                {"vehicle_id", "map", "state_dir", "final_map", "key_file", "scanner_mount",
+                 "initial_pose", "urls", "inputs", "localization", "divergence", "builder",
+                 "outbox", "map_updates", "rates", "pose_link"}));
   AgentConfig c;
   AgentPipelineOptions& p = c.node.pipeline;
   FLEETMAP_ASSIGN_OR_RETURN(p.vehicle_id,
@@ -330,6 +333,7 @@ core::Result<AgentConfig> ParseAgentConfig(const std::string& yaml_text, const s
   FLEETMAP_RETURN_IF_ERROR(ReadPath(r, root, "map", c.map_yaml));
   FLEETMAP_RETURN_IF_ERROR(ReadPath(r, root, "state_dir", c.node.outbox.state_dir));
   FLEETMAP_RETURN_IF_ERROR(ReadPath(r, root, "final_map", c.final_map_yaml));
+  FLEETMAP_RETURN_IF_ERROR(ReadPath(r, root, "key_file", c.key_file));
   if (root["scanner_mount"])
     FLEETMAP_ASSIGN_OR_RETURN(p.scanner_in_base,
                               ReadPose(r, root["scanner_mount"], "scanner_mount"));

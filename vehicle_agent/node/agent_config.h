@@ -21,6 +21,7 @@ struct AgentConfig {
   AgentNodeOptions node;
   std::string map_yaml;        // static map (map_server YAML) held as version 0; empty: none
   std::string final_map_yaml;  // where the current map is written at exit; empty: not written
+  std::string key_file;        // the fleet key (docs/security.md); empty: unauthenticated
   LinkUrls urls;               // defaults: lcmtypes/convert.h
   ScanSource scan_source = ScanSource::kLcm;
   OdomSource odom_source = OdomSource::kLcm;

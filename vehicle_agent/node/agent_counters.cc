@@ -17,6 +17,7 @@ NamedCounters CollectCounters(const AgentNodeCounters& c, const InputQueue& queu
       {"tiles_sent", o.tiles_sent},
       {"tiles_resent", o.tiles_resent},
       {"acks", c.acks},
+      {"auth_refused", c.auth_refused},
       {"maps_merged", c.maps_merged},
       {"maps_rejected", c.maps_rejected},
       {"maps_duplicate", c.maps_duplicate},

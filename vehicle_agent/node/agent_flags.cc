@@ -60,6 +60,11 @@ const std::map<std::string, Setter>& ValueFlags() {
          c.node.outbox.state_dir = v;
          return core::OkStatus();
        }},
+      {"--key-file",
+       [](const std::string& v, AgentConfig& c) {
+         c.key_file = v;
+         return core::OkStatus();
+       }},
       {"--sensor-url",
        [](const std::string& v, AgentConfig& c) {
          c.urls.sensor = v;
@@ -195,6 +200,8 @@ flags (override the configuration file):
                         or the first external pose when inputs.external_pose is on
   --scanner-mount X,Y,THETA  scanner pose in the vehicle frame (m, m, rad)    [0,0,0]
   --state-dir DIR       unacknowledged temporary maps kept here survive restarts
+  --key-file FILE       the fleet key (docs/security.md, chmod 600): sign what is sent,
+                        accept only downlink messages the aggregator signed
   --sensor-url URL      [udpm://239.255.76.69:7669?ttl=0]
   --uplink-url URL      [udpm://239.255.76.67:7667?ttl=0]
   --downlink-url URL    [udpm://239.255.76.68:7668?ttl=0]

@@ -1,5 +1,6 @@
 #include "vehicle_agent/node/agent_node.h"
 
+#include <chrono>
 #include <cmath>
 #include <set>
 
@@ -60,7 +61,13 @@ AgentNode::AgentNode(AgentNodeOptions options, Publisher* publisher, LogSink log
       follower_(options_.map),
       queue_(options_.queue),
       sends_(options_.uplink_pacer),
-      next_status_s_(now_s) {}
+      next_status_s_(now_s),
+      // Sequence numbers follow the wall clock across restarts (auth/signer.h).
+      signer_(options_.fleet_key, options_.pipeline.vehicle_id,
+              auth::FirstSequence(
+                  std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                      .count())),
+      verifier_(options_.fleet_key) {}
 
 std::vector<Subscription> AgentNode::Subscriptions() const {
   const std::string& id = options_.pipeline.vehicle_id;
@@ -96,6 +103,22 @@ void AgentNode::OnMessage(Link link, const std::string& channel, const void* dat
     return;
   }
   if (link != Link::kDownlink) return;
+  if (channel != lcmtypes::kTempMapAckChannel && channel != lcmtypes::kMapDeltaChannel &&
+      channel != lcmtypes::kMapKeyframeChannel && channel != kAggregatorStatus) {
+    return;
+  }
+  auth::Opened opened;
+  const auth::Verdict verdict =
+      verifier_.Open(channel, data, size, options_.aggregator_sender, &opened);
+  if (verdict != auth::Verdict::kAccepted) {
+    ++counters_.messages;
+    ++counters_.auth_refused;
+    log_.Once(channel + ": auth " + auth::VerdictName(verdict),
+              channel + ": " + auth::RefusalText(verdict));
+    return;
+  }
+  data = opened.data;
+  size = opened.size;
   if (channel == lcmtypes::kTempMapAckChannel) {
     OnAck(data, size);
   } else if (channel == lcmtypes::kMapDeltaChannel) {
@@ -359,7 +382,9 @@ int64_t AgentNode::Utime(double now_s) const {
 
 template <typename T>
 void AgentNode::Send(Link link, const std::string& channel, const T& message) {
-  if (!publisher_->Publish(link, channel, Encode(message))) {
+  std::vector<uint8_t> bytes = Encode(message);
+  signer_.Seal(channel, bytes);
+  if (!publisher_->Publish(link, channel, bytes)) {
     ++counters_.publish_failures;
     log_.Once("publish " + channel, "cannot publish on " + channel + " (" + LinkName(link) + ")");
   }
@@ -398,9 +423,10 @@ void AgentNode::SendMapRequest(double now_s) {
 
 void AgentNode::SendStatus(double now_s) {
   const std::string process = "agent_" + options_.pipeline.vehicle_id;
-  Send(Link::kUplink, lcmtypes::StatusChannel(process),
-       StatusMessage(process, options_.software_version, map_version(), state(), AllCounters(),
-                     Utime(now_s)));
+  fleetmap::status_t status = StatusMessage(process, options_.software_version, map_version(),
+                                            state(), AllCounters(), Utime(now_s));
+  status.authenticated = verifier_.enabled();
+  Send(Link::kUplink, lcmtypes::StatusChannel(process), status);
 }
 
 std::string AgentNode::state() const {
@@ -415,6 +441,7 @@ NamedCounters AgentNode::AllCounters() const {
   out.emplace_back("tempmaps_pending", static_cast<int64_t>(outbox_.pending()));
   out.emplace_back("tiles_queued", static_cast<int64_t>(sends_.size()));
   out.insert(out.end(), input_counters_.begin(), input_counters_.end());
+  for (const auto& named : auth::Named(verifier_.counters())) out.push_back(named);
   return out;
 }
 

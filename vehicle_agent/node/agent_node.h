@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "auth/signer.h"
+#include "auth/verifier.h"
 #include "vehicle_agent/node/agent_counters.h"
 #include "vehicle_agent/node/agent_node_options.h"
 #include "vehicle_agent/node/cause_log.h"
@@ -59,6 +61,9 @@ class AgentNode {
   const AgentNodeCounters& counters() const { return counters_; }
   NamedCounters AllCounters() const;
   const AgentNodeOptions& options() const { return options_; }
+  // A fleet key is configured: what is sent is signed, what the downlink brings must be.
+  bool authenticated() const { return verifier_.enabled(); }
+  const auth::AuthCounters& auth_counters() const { return verifier_.counters(); }
 
  private:
   AgentNode(AgentNodeOptions options, Publisher* publisher, LogSink log, double now_s);
@@ -110,6 +115,8 @@ class AgentNode {
   double next_status_s_;
   AgentNodeCounters counters_;
   NamedCounters input_counters_;
+  auth::Signer signer_;
+  auth::Verifier verifier_;
 };
 
 }  // namespace fleetmap::vehicle_agent::node

@@ -2,8 +2,10 @@
 // its YAML file and flags (agent_config.h); docs/agent_process.md lists them in that order.
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "auth/key.h"
 #include "core/send_pacer.h"
 #include "vehicle_agent/agent_pipeline.h"
 #include "vehicle_agent/node/input_queue.h"
@@ -40,6 +42,10 @@ struct AgentNodeOptions {
   // passes a monotonic clock and sets this to wall clock minus monotonic clock.
   double utime_offset_s = 0.0;
   std::string software_version = "unknown";  // in STATUS
+  // The fleet key (docs/security.md): every message sent is signed as the vehicle id, and
+  // downlink messages count only if signed by `aggregator_sender`. None: unauthenticated.
+  std::optional<auth::Key> fleet_key;
+  std::string aggregator_sender = "aggregator";  // the aggregator's process name
   core::Status Validate() const;
 };
 

@@ -76,6 +76,13 @@ int main(int argc, char** argv) {
     if (!loaded.ok()) return Fail("--map: " + loaded.status().ToString(), 1);
     static_map = std::move(loaded->grid);
   }
+  if (!config.key_file.empty()) {
+    core::Result<auth::Key> key = auth::ReadKeyFile(config.key_file);
+    if (!key.ok()) return Fail("--key-file: " + key.status().ToString(), 1);
+    config.node.fleet_key = *key;
+  } else {
+    log(LogLevel::kInfo, "no fleet key: messages are not authenticated");
+  }
   // The node runs on the monotonic clock; what it sends is stamped in wall-clock time.
   config.node.utime_offset_s = WallNowS() - SteadyNowS();
 

@@ -1,0 +1,65 @@
+// Per-vehicle bounds of the aggregator (issue 9, part 4): what one vehicle may cost the
+// server, so that a vehicle that floods (a bug, a broken radio, an attacker with a vehicle's
+// key) is throttled while the others are served as before. Each vehicle has two token
+// buckets: tiles received, and complete maps handed to the merge.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "core/result.h"
+
+namespace fleetmap::aggregator::node {
+
+struct VehicleLimitOptions {
+  // A received message larger than this is refused before it is decoded, bytes >= 1024. A
+  // temporary-map tile is at most ~4.2 KB (64 x 64 int8 cells, incompressible).
+  int max_received_bytes = 65536;
+  // Incomplete temporary maps one vehicle may have at once, maps >= 1 (all vehicles
+  // together: assembler.max_pending_maps), so one vehicle cannot take every slot.
+  int max_pending_maps_per_vehicle = 4;
+  // Tiles one vehicle may send, tiles/s > 0, after a burst of tile_burst (>= 1). A 20 m
+  // temporary map is 49 tiles, sent at most every 2 s; resends double their interval.
+  double tiles_per_s = 100.0;
+  double tile_burst = 500.0;
+  // Complete maps of one vehicle that go to the merge, per minute > 0, after a burst of
+  // merge_burst (>= 1). A map over the rate is kept unacknowledged, and merged when the
+  // vehicle resends it once the rate allows (as after a failed journal write).
+  double merges_per_min = 20.0;
+  double merge_burst = 5.0;
+  // Vehicles tracked at once, >= 1; beyond, idle ones are forgotten first.
+  int max_vehicles = 1024;
+  core::Status Validate() const;
+};
+
+class VehicleLimits {
+ public:
+  explicit VehicleLimits(const VehicleLimitOptions& options) : options_(options) {}
+
+  // False when `vehicle` is over its tile rate (the tile is dropped).
+  bool AllowTile(const std::string& vehicle, double now_s);
+  // False when `vehicle` is over its merge rate (the map waits for a resend).
+  bool AllowMerge(const std::string& vehicle, double now_s);
+  // True the first time `vehicle` is throttled, for a single log line per vehicle.
+  bool FirstThrottle(const std::string& vehicle);
+  // Vehicles throttled at least once since the start.
+  int throttled_vehicles() const { return static_cast<int>(throttled_.size()); }
+
+ private:
+  struct Bucket {
+    double tokens = 0;
+    double last_s = 0;
+  };
+  struct Vehicle {
+    Bucket tiles;
+    Bucket merges;
+  };
+  Vehicle* Find(const std::string& vehicle, double now_s);
+  static bool Take(Bucket& b, double rate_per_s, double burst, double now_s);
+
+  VehicleLimitOptions options_;
+  std::map<std::string, Vehicle> vehicles_;
+  std::map<std::string, bool> throttled_;
+};
+
+}  // namespace fleetmap::aggregator::node
