@@ -67,6 +67,8 @@ core::Result<MapPersistence> MapPersistence::Open(const std::string& folder, Cur
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) return core::IoError(folder + ": cannot create the folder: " + ec.message());
+  auto lock = StateDirLock::Acquire(folder);
+  if (!lock.ok()) return lock.status();
   RestoreReport local;
   RestoreReport& r = report ? *report : local;
   r = RestoreReport();
@@ -78,7 +80,7 @@ core::Result<MapPersistence> MapPersistence::Open(const std::string& folder, Cur
                             ReplayJournal(journal_path, store, options.max_file_bytes, r));
   auto writer = JournalWriter::Open(journal_path, valid_bytes);
   if (!writer.ok()) return writer.status();
-  MapPersistence persistence(folder, std::move(writer).value(), options);
+  MapPersistence persistence(folder, std::move(lock).value(), std::move(writer).value(), options);
   persistence.records_since_snapshot_ = r.journal_records + r.journal_skipped;
   return persistence;
 }

@@ -9,6 +9,7 @@
 
 #include "aggregator/current_map_store.h"
 #include "aggregator/journal.h"
+#include "aggregator/state_dir_lock.h"
 
 namespace fleetmap::aggregator {
 
@@ -32,8 +33,9 @@ class MapPersistence {
   static constexpr const char* kSnapshotName = "snapshot.fms";
   static constexpr const char* kJournalName = "journal.fmj";
 
-  // Creates `folder` if needed, restores `store` (which must be at version 0, holding the
-  // static map the files were written for) and opens the journal for appending.
+  // Creates `folder` if needed, locks it (state_dir_lock.h: FailedPrecondition while another
+  // process holds it), restores `store` (which must be at version 0, holding the static map
+  // the files were written for) and opens the journal for appending.
   static core::Result<MapPersistence> Open(const std::string& folder, CurrentMapStore& store,
                                            const PersistenceOptions& options,
                                            RestoreReport* report = nullptr);
@@ -46,10 +48,15 @@ class MapPersistence {
   const std::string& folder() const { return folder_; }
 
  private:
-  MapPersistence(std::string folder, JournalWriter journal, PersistenceOptions options)
-      : folder_(std::move(folder)), journal_(std::move(journal)), options_(options) {}
+  MapPersistence(std::string folder, StateDirLock lock, JournalWriter journal,
+                 PersistenceOptions options)
+      : folder_(std::move(folder)),
+        lock_(std::move(lock)),
+        journal_(std::move(journal)),
+        options_(options) {}
 
   std::string folder_;
+  StateDirLock lock_;  // released when the persistence is destroyed
   JournalWriter journal_;
   PersistenceOptions options_;
   int records_since_snapshot_ = 0;

@@ -13,6 +13,7 @@
 
 #include "core/codecs/map_render.h"
 #include "core/scan_inserter.h"
+#include "core/version.h"
 #include "tools/carmen/carmen_log.h"
 #include "tools/carmen/relations.h"
 #include "vehicle_agent/local_mapper.h"
@@ -195,6 +196,7 @@ void Print(const std::string& name, const std::string& what, const carmen::Relat
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-carmen-eval")) return 0;
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
       return std::fputs(kUsage, stdout), 0;

@@ -10,6 +10,7 @@
 #include "core/file_io.h"
 #include "core/map_io.h"
 #include "core/codecs/map_render.h"
+#include "core/version.h"
 #include "tools/eval/agents_pipeline.h"
 #include "tools/eval/eval_figures.h"
 #include "tools/eval/pipeline.h"
@@ -266,6 +267,7 @@ int RunRecorded(const Args& args, const sim::World& world, const std::string& na
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-eval")) return 0;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
       std::fputs(kUsage, stdout);

@@ -8,6 +8,7 @@
 #include "core/map_io.h"
 #include "core/codecs/map_render.h"
 #include "core/tile_delta.h"
+#include "core/version.h"
 #include "tools/sim/livinglab_map.h"
 
 namespace {
@@ -130,6 +131,7 @@ int Diff(const std::string& a, const std::string& b, const std::vector<std::stri
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-maptool")) return 0;
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);

@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "core/version.h"
 #include "tools/sickemu/s300_output.h"
 #include "tools/sickemu/scan_source.h"
 #include "tools/sickemu/scanner_emulator.h"
@@ -98,6 +99,9 @@ int WriteS300(const Args& a, fleetmap::sickemu::ScanSource& source) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-sick-emulator")) return 0;
+  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h"))
+    return std::fputs(kUsage, stdout), 0;
   Args args;
   bool ok = false;
   try {

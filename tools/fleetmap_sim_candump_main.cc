@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/version.h"
 #include "tools/simcan/sim_can_log.h"
 
 namespace {
@@ -16,6 +17,9 @@ Replay: canplayer -I LOG vcan0=can0
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-sim-candump")) return 0;
+  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h"))
+    return std::fputs(kUsage, stdout), 0;
   using namespace fleetmap;
   std::string scenario, out, can_yaml;
   simcan::SimCanLogOptions options;

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/version.h"
 #include "lcmtypes/convert.h"
 #include "tools/simlcm/sim_publisher.h"
 
@@ -92,6 +93,7 @@ double WallNow() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-sim")) return 0;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
       std::fputs(kUsage, stdout);

@@ -16,6 +16,7 @@
 #include <string>
 #include <thread>
 
+#include "core/version.h"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/laser_scan_t.hpp"
 #include "fleetmap/map_delta_t.hpp"
@@ -273,4 +274,7 @@ int Run(int argc, char** argv) {
 }  // namespace
 }  // namespace fleetmap::tools
 
-int main(int argc, char** argv) { return fleetmap::tools::Run(argc, argv); }
+int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-publish-samples")) return 0;
+  return fleetmap::tools::Run(argc, argv);
+}

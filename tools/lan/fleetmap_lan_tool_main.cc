@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/map_io.h"
+#include "core/version.h"
 #include "tools/lan/change_cost.h"
 #include "tools/lan/codec_sweep.h"
 #include "tools/lan/lan_log.h"
@@ -99,6 +100,7 @@ int Resample(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-lan-tool")) return 0;
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);

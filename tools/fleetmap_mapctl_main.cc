@@ -1,0 +1,357 @@
+// fleetmap-mapctl: the map's life on the server, from the aggregator's state folder
+// (snapshot + journal): export, history, rollback, reset a region, promote standing changes.
+// The algorithms are in tools/mapctl (library fleetmap_mapctl); this is files and flags.
+// See --help and docs/operations.md.
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aggregator/state_dir_lock.h"
+#include "core/codecs/map_render.h"
+#include "core/map_io.h"
+#include "core/version.h"
+#include "tools/mapctl/map_edits.h"
+#include "tools/mapctl/merge_summary.h"
+#include "tools/mapctl/state_history.h"
+#include "tools/mapctl/state_writer.h"
+
+namespace {
+
+using namespace fleetmap;
+
+constexpr const char* kUsage =
+    R"(usage: fleetmap-mapctl [--state-dir DIR] [--map STATIC.yaml] COMMAND [ARGS]
+
+The map's life, from the aggregator's state folder (snapshot.fms + journal.fmj):
+  export OUT.yaml [--at-version V]   the current map (or version V) as map_server YAML + PGM,
+                                  and OUT.png beside it
+  history                         one line per merge: version, time, vehicle, cells added /
+                                  removed, their bounding box in metres
+  rollback VERSION                make VERSION the current map (the aggregator restarts from it)
+  reset-region X0 Y0 X1 Y1        semi-static changes in the box (metres) back to the static map
+  promote --out-map NEW.yaml (--since-version V | --older-than S)
+                                  obstacles standing since version V / for S seconds become
+                                  part of a new static map
+
+Common flags:
+  --state-dir DIR   the aggregator's state folder (default /var/lib/fleetmap/aggregator)
+  --map FILE        the static map the aggregator runs with, its --map
+                    (default /var/lib/fleetmap/maps/static.yaml)
+  -h, --help        this text; COMMAND --help: the command's own
+  --version         the version
+rollback, reset-region and promote refuse to run while an aggregator holds the folder's lock
+(stop it first) and keep the old snapshot and journal in DIR/backup/.
+Exit status: 0 done, 1 bad or corrupt data or a locked folder, 2 bad usage.
+)";
+
+constexpr const char* kExportHelp = R"(usage: fleetmap-mapctl export OUT.yaml [--at-version V]
+Writes the current map, or the map as it was at version V (0: the static map), as
+map_server YAML + PGM (trinary, as map_saver) and OUT.png (free white, occupied black,
+unknown grey). Reads the state folder only.
+)";
+constexpr const char* kHistoryHelp = R"(usage: fleetmap-mapctl history
+Prints one line per merge, oldest first, after a header:
+  version merged_s vehicle tempmap added removed candidates dropped x0_m y0_m x1_m y1_m
+merged_s: the aggregator's clock (Unix seconds live, the log's in a replay); tempmap: the
+vehicle's temporary map number; candidates/dropped: cells seen occupied once / seen free
+again (not in the map yet); the box: every changed cell, map frame, metres ("-": none).
+Merges made by this tool name the vehicle "mapctl". Reads the state folder only.
+)";
+constexpr const char* kRollbackHelp = R"(usage: fleetmap-mapctl rollback VERSION
+Makes the map at VERSION the current map: writes a snapshot holding merges 1..VERSION and
+moves the old snapshot and journal to DIR/backup/. Start the aggregator again afterwards:
+it serves VERSION, and vehicles holding a later version take its keyframe. Refused while an
+aggregator runs on the folder.
+)";
+constexpr const char* kResetHelp = R"(usage: fleetmap-mapctl reset-region X0 Y0 X1 Y1 [--now S]
+Removes every semi-static obstacle and candidate whose cell centre lies in the box (map
+frame, metres, corners in any order): one more version, by vehicle "mapctl", at time S
+(default: now, Unix seconds). Static cells are never touched. Refused while an aggregator
+runs on the folder; the old files go to DIR/backup/.
+)";
+constexpr const char* kPromoteHelp =
+    R"(usage: fleetmap-mapctl promote --out-map NEW.yaml (--since-version V | --older-than S) [--now T]
+Obstacles that stand since version V (added at V or before) and/or for S seconds (added at
+T - S or before; T default now, Unix seconds) become occupied cells of a new static map,
+NEW.yaml + NEW.pgm. The history is rewritten without those cells (versions kept) for the
+new map. Then run the aggregator with --map NEW.yaml, and give the vehicles NEW.yaml as
+their --map. Refused while an aggregator runs on the folder; the old files go to
+DIR/backup/.
+)";
+
+struct Args {
+  std::string state_dir = "/var/lib/fleetmap/aggregator";
+  std::string map = "/var/lib/fleetmap/maps/static.yaml";
+  std::string command;
+  std::vector<std::string> rest;  // the command's arguments, flags included
+};
+
+int Fail(const core::Status& s) {
+  std::fprintf(stderr, "fleetmap-mapctl: %s\n", s.ToString().c_str());
+  return 1;
+}
+
+int Usage(const std::string& message) {
+  std::fprintf(stderr, "fleetmap-mapctl: %s (see --help)\n", message.c_str());
+  return 2;
+}
+
+// Removes `flag` and its value from args; nullopt when absent.
+std::optional<std::string> TakeFlag(std::vector<std::string>& args, const std::string& flag) {
+  for (size_t i = 0; i + 1 < args.size(); ++i) {
+    if (args[i] != flag) continue;
+    std::string value = args[i + 1];
+    args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
+    return value;
+  }
+  return std::nullopt;
+}
+
+bool HasHelp(const std::vector<std::string>& args) {
+  for (const std::string& a : args)
+    if (a == "--help" || a == "-h") return true;
+  return false;
+}
+
+core::Result<double> ParseNumber(const std::string& text, const std::string& what) {
+  try {
+    size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  return core::InvalidArgument(what + ": not a number: '" + text + "'");
+}
+
+core::Result<uint64_t> ParseVersion(const std::string& text) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+    return core::InvalidArgument("not a version (a whole number >= 0): '" + text + "'");
+  return static_cast<uint64_t>(std::stoull(text));
+}
+
+double NowS() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+std::string BackupName(const std::string& command, uint64_t version) {
+  return command + "-v" + std::to_string(version) + "-" +
+         std::to_string(static_cast<long long>(NowS()));
+}
+
+// The static map, the history and the store at its last version.
+struct Loaded {
+  core::OccupancyGrid static_map;
+  mapctl::StateHistory history;
+};
+
+core::Result<Loaded> Load(const Args& a) {
+  auto map = core::LoadMapServerMap(a.map);
+  if (!map.ok()) return map.status();
+  auto history = mapctl::ReadStateHistory(a.state_dir);
+  if (!history.ok()) return history.status();
+  if (history->torn_tail) {
+    std::fprintf(stderr,
+                 "fleetmap-mapctl: note: the journal ends in a half-written record (%s): "
+                 "ignored, as the aggregator does\n",
+                 history->torn_detail.c_str());
+  }
+  return Loaded{std::move(map->grid), std::move(history).value()};
+}
+
+core::Status SaveWithPicture(const core::OccupancyGrid& grid, const std::string& yaml) {
+  const auto folder = std::filesystem::path(yaml).parent_path();
+  std::error_code ec;
+  if (!folder.empty()) std::filesystem::create_directories(folder, ec);
+  FLEETMAP_RETURN_IF_ERROR(core::SaveMapServerMap(grid, yaml));
+  return core::RenderGridToPng(grid,
+                               std::filesystem::path(yaml).replace_extension(".png").string());
+}
+
+int Export(const Args& a) {
+  std::vector<std::string> rest = a.rest;
+  const auto version_text = TakeFlag(rest, "--at-version");
+  if (rest.size() != 1) return Usage("export takes one OUT.yaml");
+  auto loaded = Load(a);
+  if (!loaded.ok()) return Fail(loaded.status());
+  uint64_t version = loaded->history.version();
+  if (version_text) {
+    auto v = ParseVersion(*version_text);
+    if (!v.ok()) return Usage(v.status().message());
+    version = *v;
+  }
+  auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, version);
+  if (!store.ok()) return Fail(store.status());
+  const core::Status s = SaveWithPicture(store->current_map(), rest[0]);
+  if (!s.ok()) return Fail(s);
+  std::printf("exported version %llu to %s (+ .pgm, .png)\n", (unsigned long long)version,
+              rest[0].c_str());
+  return 0;
+}
+
+int History(const Args& a) {
+  if (!a.rest.empty()) return Usage("history takes no arguments");
+  auto loaded = Load(a);
+  if (!loaded.ok()) return Fail(loaded.status());
+  std::printf("%s\n", mapctl::HistoryHeader().c_str());
+  for (const auto& commit : loaded->history.commits) {
+    const auto summary = mapctl::Summarize(commit, loaded->static_map.geometry());
+    std::printf("%s\n", mapctl::FormatSummary(summary).c_str());
+  }
+  return 0;
+}
+
+// Locks the folder, then writes `store` as its state.
+int Replace(const Args& a, const aggregator::CurrentMapStore& store, const std::string& command,
+            uint64_t old_version) {
+  const auto backup = mapctl::ReplaceState(a.state_dir, store, BackupName(command, old_version));
+  if (!backup.ok()) return Fail(backup.status());
+  std::printf("%s: state at version %llu (was %llu); the old files are in %s\n", command.c_str(),
+              (unsigned long long)store.version(), (unsigned long long)old_version,
+              backup->c_str());
+  return 0;
+}
+
+int Rollback(const Args& a) {
+  if (a.rest.size() != 1) return Usage("rollback takes one VERSION");
+  auto version = ParseVersion(a.rest[0]);
+  if (!version.ok()) return Usage(version.status().message());
+  auto loaded = Load(a);
+  if (!loaded.ok()) return Fail(loaded.status());
+  auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, *version);
+  if (!store.ok()) return Fail(store.status());
+  return Replace(a, *store, "rollback", loaded->history.version());
+}
+
+int ResetRegion(const Args& a) {
+  std::vector<std::string> rest = a.rest;
+  const auto now_text = TakeFlag(rest, "--now");
+  if (rest.size() != 4) return Usage("reset-region takes X0 Y0 X1 Y1 (metres)");
+  double v[4];
+  for (int i = 0; i < 4; ++i) {
+    auto n = ParseNumber(rest[static_cast<size_t>(i)], "reset-region");
+    if (!n.ok()) return Usage(n.status().message());
+    v[i] = *n;
+  }
+  double now_s = NowS();
+  if (now_text) {
+    auto n = ParseNumber(*now_text, "--now");
+    if (!n.ok()) return Usage(n.status().message());
+    now_s = *n;
+  }
+  auto loaded = Load(a);
+  if (!loaded.ok()) return Fail(loaded.status());
+  const uint64_t last = loaded->history.version();
+  auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, last);
+  if (!store.ok()) return Fail(store.status());
+  const auto commit = mapctl::ResetRegionCommit(*store, {v[0], v[1], v[2], v[3]}, now_s);
+  const auto summary = mapctl::Summarize(commit, loaded->static_map.geometry());
+  auto applied = store->Apply(commit);
+  if (!applied.ok()) return Fail(applied.status());
+  std::printf("reset-region: %d obstacle cells removed, %d candidates dropped\n", summary.removed,
+              summary.candidates_dropped);
+  return Replace(a, *store, "reset-region", last);
+}
+
+core::Result<mapctl::PromoteOptions> PromoteFlags(std::vector<std::string>& rest) {
+  mapctl::PromoteOptions o;
+  o.now_s = NowS();
+  if (auto v = TakeFlag(rest, "--since-version"))
+    FLEETMAP_ASSIGN_OR_RETURN(o.since_version, ParseVersion(*v));
+  if (auto v = TakeFlag(rest, "--older-than"))
+    FLEETMAP_ASSIGN_OR_RETURN(o.min_age_s, ParseNumber(*v, "--older-than"));
+  if (auto v = TakeFlag(rest, "--now"))
+    FLEETMAP_ASSIGN_OR_RETURN(o.now_s, ParseNumber(*v, "--now"));
+  FLEETMAP_RETURN_IF_ERROR(o.Validate());
+  return o;
+}
+
+// The promoted state on the new static map as the aggregator will load it from `out_map`.
+core::Result<aggregator::CurrentMapStore> PromotedStore(const mapctl::Promotion& p,
+                                                        const std::string& out_map) {
+  FLEETMAP_RETURN_IF_ERROR(SaveWithPicture(p.static_map, out_map));
+  auto reloaded = core::LoadMapServerMap(out_map);
+  if (!reloaded.ok()) return reloaded.status();
+  aggregator::CurrentMapStore store(std::move(reloaded->grid), aggregator::StoreOptions{});
+  for (const auto& commit : p.commits) {
+    auto applied = store.Apply(commit);
+    if (!applied.ok()) return applied.status().WithContext("rebasing the history");
+  }
+  return store;
+}
+
+int Promote(const Args& a) {
+  std::vector<std::string> rest = a.rest;
+  const auto out_map = TakeFlag(rest, "--out-map");
+  auto options = PromoteFlags(rest);
+  if (!options.ok()) return Usage(options.status().message());
+  if (!out_map || !rest.empty())
+    return Usage("promote takes --out-map NEW.yaml and its flags only");
+  auto loaded = Load(a);
+  if (!loaded.ok()) return Fail(loaded.status());
+  const uint64_t last = loaded->history.version();
+  auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, last);
+  if (!store.ok()) return Fail(store.status());
+  const auto cells = mapctl::StandingCells(*store, *options);
+  if (cells.empty()) {
+    std::printf("promote: no obstacle qualifies; nothing written\n");
+    return 0;
+  }
+  auto promoted = PromotedStore(mapctl::Promote(*store, cells), *out_map);
+  if (!promoted.ok()) return Fail(promoted.status());
+  std::printf("promote: %zu cells are static in %s; run the aggregator with --map %s\n",
+              cells.size(), out_map->c_str(), out_map->c_str());
+  return Replace(a, *promoted, "promote", last);
+}
+
+// Splits the common flags from the command and its arguments.
+core::Result<Args> ParseArgs(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> all(argv + 1, argv + argc);
+  if (auto v = TakeFlag(all, "--state-dir")) a.state_dir = *v;
+  if (auto v = TakeFlag(all, "--map")) a.map = *v;
+  if (all.empty()) return core::InvalidArgument("no command");
+  a.command = all[0];
+  a.rest.assign(all.begin() + 1, all.end());
+  return a;
+}
+
+int Run(const Args& a) {
+  struct Command {
+    const char* name;
+    const char* help;
+    int (*run)(const Args&);
+    bool writes;
+  };
+  static const Command kCommands[] = {{"export", kExportHelp, Export, false},
+                                      {"history", kHistoryHelp, History, false},
+                                      {"rollback", kRollbackHelp, Rollback, true},
+                                      {"reset-region", kResetHelp, ResetRegion, true},
+                                      {"promote", kPromoteHelp, Promote, true}};
+  for (const Command& c : kCommands) {
+    if (a.command != c.name) continue;
+    if (HasHelp(a.rest)) return std::printf("%s", c.help), 0;
+    if (!c.writes) return c.run(a);
+    // Held until the new state is written: no aggregator can start on the folder meanwhile.
+    auto lock = aggregator::StateDirLock::Acquire(a.state_dir);
+    if (!lock.ok()) return Fail(lock.status());
+    return c.run(a);
+  }
+  return Usage("unknown command '" + a.command + "'");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (core::PrintVersionIfAsked(argc, argv, "fleetmap-mapctl")) return 0;
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    std::printf("%s", kUsage);
+    return argc < 2 ? 2 : 0;
+  }
+  auto args = ParseArgs(argc, argv);
+  if (!args.ok()) return Usage(args.status().message());
+  return Run(*args);
+}
