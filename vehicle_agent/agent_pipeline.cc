@@ -1,5 +1,7 @@
 #include "vehicle_agent/agent_pipeline.h"
 
+#include "vehicle_agent/input_guard.h"
+
 namespace fleetmap::vehicle_agent {
 
 core::Status AgentPipelineOptions::Validate() const {
@@ -55,9 +57,20 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   step.divergence = divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps);
   const core::Pose2 odometry_delta = core::Between(odom_at_last_scan_, odom_.pose_in_odom);
   odom_at_last_scan_ = odom_.pose_in_odom;
+  const bool valid = scan.Validate().ok();
+  const std::optional<double> previous_s = last_scan_stamp_s_;
+  if (valid) last_scan_stamp_s_ = scan.stamp_s;
+  if (valid && previous_s && scan.stamp_s < *previous_s - kClockStepBackS && builder_.building()) {
+    // The clock was set back: a map's times must run forward, so this one closes where the
+    // clock was, and the change goes on in a new one.
+    step.closed_map = builder_.Close(*previous_s);
+    ++counters_.temp_maps_split;
+    if (step.divergence.building && !step.divergence.stopped)
+      StartMap(scan.stamp_s, step.pose.pose_in_map);
+  }
   if (step.divergence.started && !builder_.building())
     StartMap(scan.stamp_s, step.pose.pose_in_map);
-  if (builder_.building() && step.divergence.accepted && scan.Validate().ok()) {
+  if (builder_.building() && step.divergence.accepted && valid) {
     const BuilderStep built = builder_.AddScan(scan, odometry_delta, options_.scanner_in_base);
     if (built.must_close && !step.divergence.stopped) {
       // Out of area or time while the change goes on: close this map and go on in a new one.

@@ -70,6 +70,7 @@ class AgentPipeline {
   TempMapBuilder builder_;
   core::OdometrySample odom_;
   core::Pose2 odom_at_last_scan_;
+  std::optional<double> last_scan_stamp_s_;  // of the last valid scan
   bool have_odom_ = false;
   int32_t next_sequence_ = 1;
   AgentCounters counters_;

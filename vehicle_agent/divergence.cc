@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 
+#include "vehicle_agent/input_guard.h"
 #include "vehicle_agent/option_check.h"
 
 namespace fleetmap::vehicle_agent {
@@ -37,9 +38,12 @@ DivergenceDetector::DivergenceDetector(const DivergenceOptions& options) : optio
 DivergenceSample DivergenceDetector::Update(double stamp_s, double w_avg, double omega_radps) {
   if (!std::isfinite(stamp_s) || !std::isfinite(w_avg) || w_avg < 0 || std::isnan(omega_radps))
     return Dropped(stamp_s, w_avg, stats_.dropped_invalid);
-  if (has_stamp_ && stamp_s < last_stamp_s_)
+  const bool clock_step = has_stamp_ && stamp_s < last_stamp_s_ - kClockStepBackS;
+  if (has_stamp_ && stamp_s < last_stamp_s_ && !clock_step)
     return Dropped(stamp_s, w_avg, stats_.dropped_out_of_order);
-  if (building_ && has_stamp_) stats_.building_s += stamp_s - last_stamp_s_;
+  // The clock was set back: a temporary map's duration goes on from where it was.
+  if (clock_step) started_s_ += stamp_s - last_stamp_s_;
+  if (building_ && has_stamp_ && !clock_step) stats_.building_s += stamp_s - last_stamp_s_;
   has_stamp_ = true;
   last_stamp_s_ = stamp_s;
   ++stats_.samples;

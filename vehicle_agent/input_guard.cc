@@ -14,7 +14,8 @@ OdometryTracker::Outcome OdometryTracker::Add(const core::OdometrySample& odom) 
     last_ = odom;
     return Outcome::kFirst;
   }
-  if (odom.stamp_s < last_.stamp_s) return Outcome::kOutOfOrder;
+  const bool clock_step = odom.stamp_s < last_.stamp_s - kClockStepBackS;
+  if (odom.stamp_s < last_.stamp_s && !clock_step) return Outcome::kOutOfOrder;
   const core::Pose2 step = core::Between(last_.pose_in_odom, odom.pose_in_odom);
   last_ = odom;
   if (!step.IsFinite() || std::hypot(step.x_m, step.y_m) > max_step_m_ ||
@@ -22,12 +23,13 @@ OdometryTracker::Outcome OdometryTracker::Add(const core::OdometrySample& odom) 
     return Outcome::kJump;
   }
   clean_pose_ = clean_pose_ * step;
-  return Outcome::kApplied;
+  return clock_step ? Outcome::kClockStep : Outcome::kApplied;
 }
 
 ScanGate::Outcome ScanGate::Check(const core::LaserScan& scan, const core::Pose2& scanner_in_base) {
   if (!scan.Validate().ok() || !scanner_in_base.IsFinite()) return Outcome::kInvalid;
-  if (has_scan_ && !(scan.stamp_s > last_stamp_s_)) return Outcome::kOutOfOrder;
+  const bool clock_step = has_scan_ && scan.stamp_s < last_stamp_s_ - kClockStepBackS;
+  if (has_scan_ && !(scan.stamp_s > last_stamp_s_) && !clock_step) return Outcome::kOutOfOrder;
   layout_changed_ = has_scan_ && (scan.size() != beams_ || scan.angle_min_rad != angle_min_rad_ ||
                                   scan.angle_increment_rad != angle_increment_rad_);
   has_scan_ = true;
@@ -35,7 +37,7 @@ ScanGate::Outcome ScanGate::Check(const core::LaserScan& scan, const core::Pose2
   beams_ = scan.size();
   angle_min_rad_ = scan.angle_min_rad;
   angle_increment_rad_ = scan.angle_increment_rad;
-  return Outcome::kAccepted;
+  return clock_step ? Outcome::kClockStep : Outcome::kAccepted;
 }
 
 }  // namespace fleetmap::vehicle_agent

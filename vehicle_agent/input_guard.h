@@ -10,11 +10,18 @@
 
 namespace fleetmap::vehicle_agent {
 
+// A stamp more than this before the last one is the vehicle's clock being set back (an NTP
+// step, a controller rebooted without a real-time clock), not a late message, s: it becomes
+// the new reference. Dropping it as out of order would stop localization until the clock
+// caught up again, an hour for an hour's step (issue 9's clock-jump test).
+constexpr double kClockStepBackS = 2.0;
+
 // Composes the accepted odometry increments into a "clean" odometry pose: the odometry frame
 // with every dropped increment cut out. Poses derived from it never see a jump.
 class OdometryTracker {
  public:
-  enum class Outcome { kFirst, kApplied, kInvalid, kOutOfOrder, kJump };
+  // kClockStep: applied, though its stamp is kClockStepBackS or more before the last one.
+  enum class Outcome { kFirst, kApplied, kInvalid, kOutOfOrder, kJump, kClockStep };
 
   // max_step_m / max_step_rad: the largest believable increment between two samples.
   OdometryTracker(double max_step_m, double max_step_rad);
@@ -35,10 +42,12 @@ class OdometryTracker {
 };
 
 // Accepts scans whose header validates (LaserScan::Validate), whose scanner mount is finite
-// and whose stamp is later than the last accepted one; notes when the beam layout changes.
+// and whose stamp is later than the last accepted one (or a clock step back); notes when the
+// beam layout changes.
 class ScanGate {
  public:
-  enum class Outcome { kAccepted, kInvalid, kOutOfOrder };
+  // kClockStep: accepted, though its stamp is kClockStepBackS or more before the last one.
+  enum class Outcome { kAccepted, kInvalid, kOutOfOrder, kClockStep };
 
   Outcome Check(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
   // The last accepted scan had a different beam count or angles than the one before.

@@ -149,6 +149,9 @@ void Localizer::TrackOdometry(const core::OdometrySample& odom) {
     case OdometryTracker::Outcome::kJump:
       ++counters_.odometry_jumps;
       break;
+    case OdometryTracker::Outcome::kClockStep:
+      ++counters_.clock_steps_back;
+      break;
     default:
       break;
   }
@@ -174,6 +177,9 @@ bool Localizer::AcceptScan(const core::LaserScan& scan, const core::Pose2& scann
     case ScanGate::Outcome::kOutOfOrder:
       ++counters_.scans_out_of_order;
       return false;
+    case ScanGate::Outcome::kClockStep:
+      ++counters_.clock_steps_back;
+      break;
     case ScanGate::Outcome::kAccepted:
       break;
   }

@@ -36,6 +36,7 @@ struct LocalizerCounters {
   int64_t odometry_invalid = 0;       // non-finite field
   int64_t odometry_out_of_order = 0;  // stamp before the last sample
   int64_t odometry_jumps = 0;         // increment above max_odometry_step_*: dropped
+  int64_t clock_steps_back = 0;       // scans or odometry whose clock was set back: applied
   int64_t weight_resets = 0;          // every particle impossible: weights made uniform
   int64_t filter_updates = 0;
   int64_t resamplings = 0;

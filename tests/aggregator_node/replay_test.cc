@@ -1,12 +1,17 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <random>
 
 #include "aggregator/node/log_replay.h"
 #include "aggregator/node/map_hash.h"
+#include "auth/key.h"
+#include "auth/signer.h"
 #include "core/map_io.h"
 #include "tests/aggregator/test_files.h"
 #include "tests/aggregator_node/node_test_util.h"
@@ -90,14 +95,11 @@ class AggregatorNodeReplayTest : public ::testing::Test {
 
   // What the binary prints for a replay of `logs`, and how long it took.
   std::string RunReplay(const std::vector<std::string>& logs, const std::string& final_map,
-                        double* seconds = nullptr) {
-    std::vector<std::string> args = {testing::AggregatorBinary(),
-                                     "--map",
-                                     map_yaml_,
-                                     "--quiet",
-                                     "--final-map",
-                                     final_map,
-                                     "--replay"};
+                        double* seconds = nullptr, const std::vector<std::string>& flags = {}) {
+    std::vector<std::string> args = {
+        testing::AggregatorBinary(), "--map", map_yaml_, "--quiet", "--final-map", final_map};
+    args.insert(args.end(), flags.begin(), flags.end());
+    args.push_back("--replay");
     args.insert(args.end(), logs.begin(), logs.end());
     const std::string out = folder_.File("stdout" + std::to_string(runs_));
     const std::string err = folder_.File("stderr" + std::to_string(runs_++));
@@ -170,6 +172,55 @@ TEST_F(AggregatorNodeReplayTest, SeveralLogsAreMergedByEventTime) {
       RunReplay({folder_.File("b.lcmlog"), folder_.File("a.lcmlog")}, folder_.File("s.yaml"));
   EXPECT_FALSE(whole.empty());
   EXPECT_EQ(split, whole);
+}
+
+// A log recorded from a keyed fleet (docs/security.md): every uplink message signed by its
+// sender. Replayed offline with the same key it gives the same map as the unsigned log (the
+// replay windows start empty and read each sender's messages in order); without a key the
+// trailers are split off unchecked; with another key nothing counts.
+TEST_F(AggregatorNodeReplayTest, ASignedLogReplaysWithTheKeyToTheSameMap) {
+  const auth::Key key = auth::GenerateKey();
+  std::map<std::string, auth::Signer> signers;
+  std::vector<Event> signed_events = events_;
+  for (Event& e : signed_events) {
+    if (!IsUplinkChannel(e.channel)) continue;
+    const std::string sender = e.channel.rfind("TEMPMAP_", 0) == 0 ? e.channel.substr(8) : "v3";
+    auto it = signers.try_emplace(sender, key, sender, auth::FirstSequence(1.7e9)).first;
+    it->second.Seal(e.channel, e.bytes);
+  }
+  WriteLog(folder_.File("signed.lcmlog"), signed_events);
+  const std::string key_file = folder_.File("fleet.key");
+  std::ofstream(key_file) << auth::KeyToHex(key) << "\n";
+  ::chmod(key_file.c_str(), 0600);
+  const std::string other_key = folder_.File("other.key");
+  std::ofstream(other_key) << auth::KeyToHex(auth::GenerateKey()) << "\n";
+  ::chmod(other_key.c_str(), 0600);
+
+  const std::string plain = RunReplay({log_}, folder_.File("p.yaml"));
+  ASSERT_NE(plain.find("merged 6"), std::string::npos) << plain;
+  const std::string signed_log = folder_.File("signed.lcmlog");
+  EXPECT_EQ(RunReplay({signed_log}, folder_.File("k.yaml"), nullptr, {"--key-file", key_file}),
+            plain);
+  EXPECT_EQ(RunReplay({signed_log}, folder_.File("n.yaml")), plain);
+  const std::string wrong =
+      RunReplay({signed_log}, folder_.File("w.yaml"), nullptr, {"--key-file", other_key});
+  EXPECT_NE(wrong.find("version 0 "), std::string::npos) << wrong;
+  // The unsigned log with a key: nothing counts either.
+  EXPECT_NE(
+      RunReplay({log_}, folder_.File("u.yaml"), nullptr, {"--key-file", key_file}).find("merged 0"),
+      std::string::npos);
+}
+
+TEST_F(AggregatorNodeReplayTest, AKeyFileOthersCanReadIsRefusedWithTheFix) {
+  const std::string key_file = folder_.File("open.key");
+  std::ofstream(key_file) << auth::KeyToHex(auth::GenerateKey()) << "\n";
+  ::chmod(key_file.c_str(), 0644);
+  testing::Process p(
+      {testing::AggregatorBinary(), "--map", map_yaml_, "--key-file", key_file, "--replay", log_},
+      folder_.File("o"), folder_.File("e"));
+  EXPECT_EQ(p.Wait(30.0), 1);
+  const std::string err = testing::ReadText(folder_.File("e"));
+  EXPECT_NE(err.find("chmod 600"), std::string::npos) << err;
 }
 
 TEST_F(AggregatorNodeReplayTest, AMissingLogIsAClearError) {

@@ -135,6 +135,30 @@ TEST(DivergenceTest, DoesNotUpdateWhileRotating) {
   }
 }
 
+TEST(DivergenceTest, AClockSetBackIsANewReferenceAndKeepsTheMapsDuration) {
+  DivergenceOptions options;
+  options.min_duration_s = 2.0;
+  DivergenceDetector detector{options};
+  double t = 100.0;
+  for (int i = 0; i < 100; ++i, t += 0.04) detector.Update(t, 1.0, 0.0);
+  bool started = false;  // a change: building
+  for (int i = 0; i < 10 && !started; ++i, t += 0.04)
+    started = detector.Update(t, 0.01, 0.0).started;
+  ASSERT_TRUE(started);
+  // The clock is set back an hour one second into the map: accepted, not out of order ...
+  for (int i = 0; i < 25; ++i, t += 0.04) ASSERT_TRUE(detector.Update(t, 0.01, 0.0).accepted);
+  t -= 3600.0;
+  EXPECT_TRUE(detector.Update(t, 0.01, 0.0).accepted);
+  EXPECT_EQ(detector.stats().dropped_out_of_order, 0);
+  // ... and the map's duration goes on: with no divergence it stops after min_duration_s.
+  bool stopped = false;
+  for (int i = 0; i < 100 && !stopped; ++i) {
+    t += 0.04;
+    stopped = detector.Update(t, 1.0, 0.0).stopped;
+  }
+  EXPECT_TRUE(stopped);
+}
+
 TEST(DivergenceTest, DropsAndCountsBadInput) {
   DivergenceDetector detector{DivergenceOptions()};
   detector.Update(1.0, 1.0, 0.0);

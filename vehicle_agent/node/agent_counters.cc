@@ -40,6 +40,7 @@ NamedCounters CollectCounters(const AgentNodeCounters& c, const InputQueue& queu
       {"odometry_invalid", l.odometry_invalid},
       {"odometry_out_of_order", l.odometry_out_of_order},
       {"odometry_jumps", l.odometry_jumps},
+      {"clock_steps_back", l.clock_steps_back},
       {"external_poses_dropped", l.external_poses_dropped},
       {"persist_errors", o.persist_errors},
       {"publish_failures", c.publish_failures},
