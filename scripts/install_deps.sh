@@ -14,6 +14,7 @@ packages=(
   qemu-system-x86 linux-image-amd64 busybox-static can-utils cpio  # SocketCAN tests in a VM
   libsodium-dev  # message authentication: HMAC-SHA-256, key derivation (docs/security.md)
   gnuplot-nox  # the LAN experiments' plots (tools/lan, docs/lan_experiments.md)
+  dpkg-dev fakeroot file systemd  # Debian packages: dpkg-shlibdeps, systemd-analyze (docs/deployment.md)
   "$@"
 )
 

@@ -1,0 +1,151 @@
+# Debian packages (CPack, one package per component; ./run_package.sh, docs/deployment.md):
+#   fleetmap-common          the system user, /var/lib/fleetmap, the multicast route unit and
+#                            the receive-buffer sysctl both processes need (one owner: dpkg
+#                            refuses two packages that ship the same file)
+#   fleetmap-agent           fleetmap-agent, fleetmap-agent@.service, /etc/fleetmap/agent-example.yaml
+#   fleetmap-aggregator      fleetmap-aggregator, fleetmap-mapctl, fleetmap-keygen (the fleet key,
+#                            copied to every vehicle), fleetmap-aggregator.service,
+#                            /etc/fleetmap/aggregator.{yaml,env}
+#   fleetmap-tools           simulator, evaluation, scanner emulator, CAN log writer, maptool,
+#                            CARMEN evaluation, sample publisher, the LAN experiment; the worlds
+#   fleetmap-lcmtypes-java   the lcm-spy type jar and fleetmap-spy
+# Depends: dpkg-shlibdeps reads the binaries (CPACK_DEBIAN_PACKAGE_SHLIBDEPS), plus what the
+# scripts call. Files under /etc are conffiles: an operator's edits survive upgrades.
+set(fleetmap_pkg_dir "${PROJECT_SOURCE_DIR}/packaging")
+# Packaging builds only what it ships (target fleetmap_packaged), not the tests and benchmarks.
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
+set(fleetmap_packaged_targets fleetmap-agent fleetmap-aggregator fleetmap-mapctl fleetmap-keygen fleetmap-sim
+    fleetmap-eval fleetmap-maptool fleetmap-sick-emulator fleetmap-sim-candump
+    fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool)
+add_custom_target(fleetmap_packaged)
+add_dependencies(fleetmap_packaged ${fleetmap_packaged_targets})
+if(TARGET fleetmap_lcmtypes_jar)
+  add_dependencies(fleetmap_packaged fleetmap_lcmtypes_jar)
+endif()
+set(fleetmap_unit_dir "/lib/systemd/system")  # Debian 12 packages ship units here
+
+# fleetmap-common
+install(FILES "${fleetmap_pkg_dir}/systemd/fleetmap-multicast.service"
+        DESTINATION "${fleetmap_unit_dir}" COMPONENT common)
+install(FILES "${fleetmap_pkg_dir}/etc/60-fleetmap.conf" DESTINATION lib/sysctl.d COMPONENT common)
+install(PROGRAMS "${fleetmap_pkg_dir}/lib/fleetmap-multicast-setup" DESTINATION lib/fleetmap
+        COMPONENT common)
+install(FILES "${fleetmap_pkg_dir}/etc/multicast.env" DESTINATION /etc/fleetmap COMPONENT common)
+install(FILES "${PROJECT_SOURCE_DIR}/docs/operations.md" "${PROJECT_SOURCE_DIR}/docs/deployment.md"
+        DESTINATION share/doc/fleetmap-common COMPONENT common)
+
+# fleetmap-agent
+install(TARGETS fleetmap-agent RUNTIME DESTINATION bin COMPONENT agent)
+install(FILES "${fleetmap_pkg_dir}/systemd/fleetmap-agent@.service"
+        DESTINATION "${fleetmap_unit_dir}" COMPONENT agent)
+install(FILES "${fleetmap_pkg_dir}/etc/agent-example.yaml" DESTINATION /etc/fleetmap
+        COMPONENT agent)
+
+# fleetmap-aggregator
+install(TARGETS fleetmap-aggregator fleetmap-mapctl fleetmap-keygen RUNTIME DESTINATION bin COMPONENT aggregator)
+install(FILES "${fleetmap_pkg_dir}/systemd/fleetmap-aggregator.service"
+        DESTINATION "${fleetmap_unit_dir}" COMPONENT aggregator)
+install(FILES "${fleetmap_pkg_dir}/etc/aggregator.yaml" "${fleetmap_pkg_dir}/etc/aggregator.env"
+        DESTINATION /etc/fleetmap COMPONENT aggregator)
+
+# fleetmap-tools: the LAN experiment finds its lib/ and the worlds beside it, as in the
+# source tree (/usr/share/fleetmap/tools/...), and the programs through --bin /usr/bin.
+install(TARGETS fleetmap-sim fleetmap-eval fleetmap-maptool fleetmap-sick-emulator
+                fleetmap-sim-candump fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool
+        RUNTIME DESTINATION bin COMPONENT tools)
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/tools/sim/worlds" DESTINATION share/fleetmap/tools/sim
+        COMPONENT tools)
+install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/lan/fleetmap-lan-experiment"
+        DESTINATION share/fleetmap/tools/lan COMPONENT tools)
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/tools/lan/lib" DESTINATION share/fleetmap/tools/lan
+        COMPONENT tools)
+configure_file("${fleetmap_pkg_dir}/bin/fleetmap-lan-experiment"
+               "${PROJECT_BINARY_DIR}/packaging/fleetmap-lan-experiment" @ONLY)
+install(PROGRAMS "${PROJECT_BINARY_DIR}/packaging/fleetmap-lan-experiment" DESTINATION bin
+        COMPONENT tools)
+
+# fleetmap-lcmtypes-java
+set(fleetmap_components common agent aggregator tools)
+if(TARGET fleetmap_lcmtypes_jar)
+  install(FILES "${PROJECT_BINARY_DIR}/lcmtypes/fleetmap_lcmtypes.jar" DESTINATION share/java
+          COMPONENT java)
+  configure_file("${fleetmap_pkg_dir}/bin/fleetmap-spy" "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy"
+                 @ONLY)
+  install(PROGRAMS "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy" DESTINATION bin COMPONENT java)
+  list(APPEND fleetmap_components java)
+endif()
+
+# Maintainer scripts and conffiles, per package.
+function(fleetmap_control_files component)
+  set(dir "${PROJECT_BINARY_DIR}/packaging/control/${component}")
+  file(MAKE_DIRECTORY "${dir}")
+  set(files "")
+  foreach(script postinst postrm prerm)
+    if(EXISTS "${fleetmap_pkg_dir}/debian/${component}/${script}")
+      file(COPY "${fleetmap_pkg_dir}/debian/${component}/${script}" DESTINATION "${dir}"
+           FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
+                            WORLD_READ WORLD_EXECUTE)
+      list(APPEND files "${dir}/${script}")
+    endif()
+  endforeach()
+  if(ARGN)
+    list(JOIN ARGN "\n" conffiles)
+    file(WRITE "${dir}/conffiles" "${conffiles}\n")
+    list(APPEND files "${dir}/conffiles")
+  endif()
+  string(TOUPPER "${component}" upper)
+  set(CPACK_DEBIAN_${upper}_PACKAGE_CONTROL_EXTRA "${files}" PARENT_SCOPE)
+endfunction()
+fleetmap_control_files(common /etc/fleetmap/multicast.env)
+fleetmap_control_files(agent /etc/fleetmap/agent-example.yaml)
+fleetmap_control_files(aggregator /etc/fleetmap/aggregator.yaml /etc/fleetmap/aggregator.env)
+fleetmap_control_files(tools)
+
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME fleetmap)
+set(CPACK_PACKAGE_VERSION "${PROJECT_VERSION}")
+set(CPACK_PACKAGE_CONTACT "fleetmap developers <fleetmap@example.invalid>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Dynamic warehouse map updates for a vehicle fleet")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_STRIP_FILES TRUE)
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_COMPONENTS_ALL ${fleetmap_components})
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION misc)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_ENABLE_COMPONENT_DEPENDS OFF)
+set(fleetmap_common_dep "fleetmap-common (= ${PROJECT_VERSION})")
+
+set(CPACK_DEBIAN_COMMON_PACKAGE_NAME fleetmap-common)
+set(CPACK_DEBIAN_COMMON_PACKAGE_ARCHITECTURE all)
+set(CPACK_DEBIAN_COMMON_PACKAGE_SHLIBDEPS OFF)
+set(CPACK_DEBIAN_COMMON_PACKAGE_DEPENDS "adduser, iproute2, procps")
+set(CPACK_DEBIAN_COMMON_DESCRIPTION
+    "fleetmap: system user, data folder, LCM multicast route and receive buffer\n The fleetmap user, /var/lib/fleetmap, fleetmap-multicast.service (a route for\n 224.0.0.0/4) and the net.core.rmem_max setting that LCM's 8 MiB receive buffers need.")
+
+set(CPACK_DEBIAN_AGENT_PACKAGE_NAME fleetmap-agent)
+set(CPACK_DEBIAN_AGENT_PACKAGE_DEPENDS "${fleetmap_common_dep}")
+set(CPACK_DEBIAN_AGENT_PACKAGE_SUGGESTS "can-utils, liblcm-bin")
+set(CPACK_DEBIAN_AGENT_DESCRIPTION
+    "fleetmap vehicle agent\n Runs on every vehicle: localizes on the current map, detects where the laser no\n longer agrees with it, maps that place and sends it to the aggregator over LCM.\n One systemd instance per vehicle: fleetmap-agent@ID.service.")
+
+set(CPACK_DEBIAN_AGGREGATOR_PACKAGE_NAME fleetmap-aggregator)
+set(CPACK_DEBIAN_AGGREGATOR_PACKAGE_DEPENDS "${fleetmap_common_dep}")
+set(CPACK_DEBIAN_AGGREGATOR_PACKAGE_SUGGESTS "liblcm-bin")
+set(CPACK_DEBIAN_AGGREGATOR_DESCRIPTION
+    "fleetmap aggregator and fleetmap-mapctl\n Merges the vehicles' temporary maps into the versioned current map and sends\n every change back; fleetmap-mapctl exports, lists, rolls back and edits its history.")
+
+set(CPACK_DEBIAN_TOOLS_PACKAGE_NAME fleetmap-tools)
+set(CPACK_DEBIAN_TOOLS_PACKAGE_RECOMMENDS "liblcm-bin, iproute2, gnuplot-nox")
+set(CPACK_DEBIAN_TOOLS_DESCRIPTION
+    "fleetmap simulator, evaluation and test tools\n The warehouse simulator, the evaluation against ground truth, the SICK scanner\n emulator, the CAN log writer, maptool, the CARMEN evaluation and the LAN experiment.")
+
+set(CPACK_DEBIAN_JAVA_PACKAGE_NAME fleetmap-lcmtypes-java)
+set(CPACK_DEBIAN_JAVA_PACKAGE_ARCHITECTURE all)
+set(CPACK_DEBIAN_JAVA_PACKAGE_SHLIBDEPS OFF)
+set(CPACK_DEBIAN_JAVA_PACKAGE_DEPENDS "liblcm-java, liblcm-bin, default-jre-headless | java-runtime-headless")
+set(CPACK_DEBIAN_JAVA_PACKAGE_RECOMMENDS "libjchart2d-java")
+set(CPACK_DEBIAN_JAVA_DESCRIPTION
+    "fleetmap LCM message types for lcm-spy\n fleetmap_lcmtypes.jar and fleetmap-spy, which starts lcm-spy with it.")
+
+include(CPack)

@@ -1,0 +1,160 @@
+#!/usr/bin/env bash
+# Runs the commands of docs/operations.md that can run on this machine (marked
+# "[tested: operations_docs_test]" there), with a scratch folder and private multicast ports:
+# a short simulated run of one vehicle recorded with lcm-logger, `fleetmap-aggregator
+# --replay` of the recording into a state folder, every fleetmap-mapctl command on it (each
+# checked against the map it must give), the troubleshooting checks, and --help/--version
+# of every program.
+#   tests/deploy/operations_test.sh SOURCE_DIR BIN_DIR
+# Exit status: 0 passed, 1 failed, 77 skipped (no multicast on loopback: needs root once).
+set -uo pipefail
+src=$(cd "${1:?usage: operations_test.sh SOURCE_DIR BIN_DIR}" && pwd)
+bin=$(cd "${2:?usage: operations_test.sh SOURCE_DIR BIN_DIR}" && pwd)
+"$src/scripts/setup_multicast.sh" >/dev/null 2>&1 || { echo "SKIP: no multicast on loopback"; exit 77; }
+command -v lcm-logger >/dev/null || { echo "SKIP: lcm-logger missing (liblcm-bin)"; exit 77; }
+work=$(mktemp -d "${TMPDIR:-/tmp}/fleetmap_ops.XXXXXX")
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null; done
+  wait 2>/dev/null
+  rm -rf "$work"
+}
+trap cleanup EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+pass() { echo "ok: $*"; }
+mapctl() { "$bin/fleetmap-mapctl" --state-dir "$work/replayed" --map "$map" "$@"; }
+same_map() {  # two exported maps hold the same cells (trinary PGMs, byte for byte)
+  cmp -s "${1%.yaml}.pgm" "${2%.yaml}.pgm"
+}
+
+# --help and --version of every program (the installed ones: package_install_test).
+for p in "$bin"/fleetmap-*; do
+  name=$(basename "$p")
+  [[ $name == fleetmap-keygen || $name == fleetmap-record ]] ||
+    "$p" --version | grep -q . || fail "$name --version"
+  "$p" --help >/dev/null 2>&1 || fail "$name --help exits $?"
+done
+for c in export history rollback reset-region promote; do
+  "$bin/fleetmap-mapctl" "$c" --help | grep -q "usage: fleetmap-mapctl $c" || fail "mapctl $c --help"
+done
+pass "--help and --version"
+
+# 2. Configure: the static map, the fleet key.
+scenario=$src/tools/sim/worlds/livinglab/addition.yaml
+map=$src/tools/sim/worlds/livinglab/livinglab.yaml
+"$bin/fleetmap-maptool" info "$map" | grep -q "^cells: " || fail "fleetmap-maptool info"
+if [[ -x $bin/fleetmap-keygen ]]; then
+  "$bin/fleetmap-keygen" "$work/fleet.key" && [[ $(stat -c %a "$work/fleet.key") == 600 ]] ||
+    fail "fleetmap-keygen: the key is not mode 600"
+fi
+pass "static map and key"
+
+# 7. Troubleshoot: the route and the receive buffer (setup_multicast.sh made both right).
+ip route show 224.0.0.0/4 | grep -q . || fail "ip route show 224.0.0.0/4 prints nothing"
+(($(sysctl -n net.core.rmem_max) >= 8388608)) || fail "net.core.rmem_max below 8 MiB"
+pass "route and receive buffer"
+
+# 4. Record: a vehicle passes the pallets of the addition scenario (60 simulated s at 4x),
+# with the aggregator live and lcm-logger on the uplink.
+port=$((20000 + RANDOM % 5000))
+uplink="udpm://239.255.76.67:$port?ttl=0&recv_buf_size=8388608"
+downlink="udpm://239.255.76.68:$((port + 1))?ttl=0&recv_buf_size=8388608"
+sensor="udpm://239.255.76.69:$((port + 2))?ttl=0&recv_buf_size=8388608"
+lcm-logger --lcm-url="$uplink" "$work/uplink.lcmlog" >"$work/logger.txt" 2>&1 &
+logger=$!
+pids+=($logger)
+"$bin/fleetmap-aggregator" --map "$map" --state-dir "$work/live" --uplink-url "$uplink" \
+  --downlink-url "$downlink" --quiet >"$work/aggregator.txt" 2>&1 &
+aggregator=$!
+pids+=($aggregator)
+read -r id x y theta mx my mtheta < <("$bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | head -1)
+"$bin/fleetmap-agent" --vehicle-id "$id" --map "$map" --initial-pose "$x,$y,$theta" \
+  --scanner-mount "$mx,$my,$mtheta" --sensor-url "$sensor" --uplink-url "$uplink" \
+  --downlink-url "$downlink" --state-dir "$work/agent" --quiet >"$work/agent.txt" 2>&1 &
+agent=$!
+pids+=($agent)
+sleep 1
+"$bin/fleetmap-sim" --scenario "$scenario" --speed 4 --duration 60 --lcm-url "$sensor" >/dev/null 2>&1 ||
+  fail "fleetmap-sim"
+sleep 3
+kill -INT "$agent"
+wait "$agent" || fail "agent exit status $?"
+sleep 2
+kill -INT "$logger"
+wait "$logger"
+kill -TERM "$aggregator"
+wait "$aggregator" || fail "aggregator exit status $?"
+live=$(grep '^aggregator: ' "$work/aggregator.txt")
+[[ -s $work/uplink.lcmlog ]] || fail "lcm-logger recorded nothing"
+pass "recorded: $live"
+
+# 4. Replay into a state folder of its own.
+"$bin/fleetmap-aggregator" --map "$map" --replay "$work/uplink.lcmlog" --state-dir "$work/replayed" \
+  --final-map "$work/replayed.yaml" --quiet >"$work/replay.txt" 2>&1 || fail "replay exits $?"
+replayed=$(grep '^aggregator: ' "$work/replay.txt")
+version=$(awk '{ print $3 }' <<<"$replayed")
+((version >= 1)) || { fail "the replay merged nothing: $replayed (live: $live)"; exit 1; }
+pass "replayed: $replayed"
+
+# 5. mapctl history and export: one line per merge; the export is the replay's final map;
+# version 0 is the static map.
+mapctl history >"$work/history.txt" || fail "mapctl history"
+[[ $(sed 1d "$work/history.txt" | wc -l) == "$version" ]] || fail "history: not $version merges"
+sed -n 2p "$work/history.txt" | grep -qE "^1 [0-9.]+ $id [0-9]+ [0-9]+ " || fail "history line: $(sed -n 2p "$work/history.txt")"
+mapctl export "$work/current.yaml" >/dev/null || fail "mapctl export"
+[[ -s $work/current.png ]] || fail "export wrote no PNG"
+same_map "$work/current.yaml" "$work/replayed.yaml" || fail "export differs from the replay's final map"
+mapctl export "$work/v0.yaml" --at-version 0 >/dev/null || fail "mapctl export --at-version 0"
+"$bin/fleetmap-maptool" diff "$map" "$work/v0.yaml" | grep -q . || fail "maptool diff"
+before=$((version - 1))
+mapctl export "$work/before.yaml" --at-version "$before" >/dev/null || fail "export --at-version $before"
+pass "history ($version merges) and export"
+
+# A running aggregator holds the folder: rollback is refused.
+"$bin/fleetmap-aggregator" --map "$map" --state-dir "$work/replayed" --uplink-url "$uplink" \
+  --downlink-url "$downlink" --duration 4 --quiet >/dev/null 2>&1 &
+holder=$!
+pids+=($holder)
+sleep 2
+out=$(mapctl rollback 0 2>&1)
+[[ $? == 1 && $out == *"in use"* ]] || fail "rollback while the aggregator runs: $out"
+wait "$holder"
+pass "rollback refused while the aggregator runs"
+
+# Promote every standing obstacle: the new static map with the rewritten history is the
+# same map.
+mapctl promote --since-version "$version" --out-map "$work/static2.yaml" >/dev/null || fail "mapctl promote"
+"$bin/fleetmap-mapctl" --state-dir "$work/replayed" --map "$work/static2.yaml" export "$work/promoted.yaml" >/dev/null ||
+  fail "export after promote"
+same_map "$work/promoted.yaml" "$work/current.yaml" || fail "promote changed the map"
+ls "$work"/replayed/backup/promote-* >/dev/null 2>&1 || fail "promote kept no backup"
+# Put the pre-promote state back (what an operator does with backup/), for the next steps.
+cp "$work"/replayed/backup/promote-*/snapshot.fms "$work/replayed/snapshot.fms"
+pass "promote"
+
+# Roll back one version: the current map is the one exported at that version.
+mapctl rollback "$before" >/dev/null || fail "mapctl rollback $before"
+mapctl export "$work/rolled.yaml" >/dev/null
+same_map "$work/rolled.yaml" "$work/before.yaml" || fail "rollback then export is not version $before"
+pass "rollback to $before"
+
+# Reset the whole hall: the static map again, one version more.
+mapctl reset-region -1 -1 100 100 >/dev/null || fail "mapctl reset-region"
+mapctl export "$work/reset.yaml" >/dev/null
+same_map "$work/reset.yaml" "$work/v0.yaml" || fail "reset-region of the whole hall is not the static map"
+[[ $(mapctl history | tail -1 | awk '{ print $1, $3 }') == "$version mapctl" ]] || fail "reset-region made no version"
+pass "reset-region"
+
+# A corrupt state file is named, not crashed on.
+cp -r "$work/replayed" "$work/corrupt"
+printf '\x55' | dd of="$work/corrupt/snapshot.fms" bs=1 seek=40 conv=notrunc 2>/dev/null
+out=$("$bin/fleetmap-mapctl" --state-dir "$work/corrupt" --map "$map" history 2>&1)
+[[ $? == 1 && $out == *DATA_LOSS* && $out == *snapshot.fms* ]] || fail "corrupt snapshot: $out"
+pass "corrupt state named"
+
+if ((failures)); then
+  echo "operations test: $failures failures"
+  exit 1
+fi
+echo "operations test: passed"
