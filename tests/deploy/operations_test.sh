@@ -5,11 +5,12 @@
 # --replay` of the recording into a state folder, every fleetmap-mapctl command on it (each
 # checked against the map it must give), the troubleshooting checks, and --help/--version
 # of every program.
-#   tests/deploy/operations_test.sh SOURCE_DIR BIN_DIR
+#   tests/deploy/operations_test.sh SOURCE_DIR BIN_DIR [SPEED]   (simulated s per s, default 4)
 # Exit status: 0 passed, 1 failed, 77 skipped (no multicast on loopback: needs root once).
 set -uo pipefail
 src=$(cd "${1:?usage: operations_test.sh SOURCE_DIR BIN_DIR}" && pwd)
 bin=$(cd "${2:?usage: operations_test.sh SOURCE_DIR BIN_DIR}" && pwd)
+speed=${3:-4}
 "$src/scripts/setup_multicast.sh" >/dev/null 2>&1 || { echo "SKIP: no multicast on loopback"; exit 77; }
 command -v lcm-logger >/dev/null || { echo "SKIP: lcm-logger missing (liblcm-bin)"; exit 77; }
 work=$(mktemp -d "${TMPDIR:-/tmp}/fleetmap_ops.XXXXXX")
@@ -55,7 +56,7 @@ ip route show 224.0.0.0/4 | grep -q . || fail "ip route show 224.0.0.0/4 prints 
 (($(sysctl -n net.core.rmem_max) >= 8388608)) || fail "net.core.rmem_max below 8 MiB"
 pass "route and receive buffer"
 
-# 4. Record: a vehicle passes the pallets of the addition scenario (60 simulated s at 4x),
+# 4. Record: a vehicle passes the pallets of the addition scenario (60 simulated s at SPEED),
 # with the aggregator live and lcm-logger on the uplink.
 port=$((20000 + RANDOM % 5000))
 uplink="udpm://239.255.76.67:$port?ttl=0&recv_buf_size=8388608"
@@ -75,7 +76,7 @@ read -r id x y theta mx my mtheta < <("$bin/fleetmap-sim" --scenario "$scenario"
 agent=$!
 pids+=($agent)
 sleep 1
-"$bin/fleetmap-sim" --scenario "$scenario" --speed 4 --duration 60 --lcm-url "$sensor" >/dev/null 2>&1 ||
+"$bin/fleetmap-sim" --scenario "$scenario" --speed "$speed" --duration 60 --lcm-url "$sensor" >/dev/null 2>&1 ||
   fail "fleetmap-sim"
 sleep 3
 kill -INT "$agent"
