@@ -84,10 +84,10 @@ for l in "${logs[@]}"; do
   missing() { grep -o '([0-9]* missing)' "$1" | head -1 | tr -dc 0-9; }
   missing=$(missing "$work/mrpt_eval.txt") ours_missing=$(missing "$work/ours_eval.txt")
   # A working run: a pose for every step, the relations found as for ours (a few relations
-  # name times that are not in the log), a path that moved as far as the odometry (within
-  # 20 %), a finite error.
+  # name times that are not in the log), a path about as long as the odometry's (-20 % to
+  # +50 %: a path that never moves has length 0, ICP's corrections add some), a finite error.
   if [[ $poses -ne $steps || ${missing:-x} != "${ours_missing:-y}" ]] ||
-    ! awk -v a="$mrpt_len" -v b="$odo_len" -v e="$mrpt_t" 'BEGIN { exit !(b > 0 && a > 0.8 * b && a < 1.2 * b && e > 0 && e < 1e3) }'; then
+    ! awk -v a="$mrpt_len" -v b="$odo_len" -v e="$mrpt_t" 'BEGIN { exit !(b > 0 && a > 0.8 * b && a < 1.5 * b && e > 0 && e < 1e3) }'; then
     echo "mrpt_compare: $l: MRPT's run does not pass the checks (poses $poses/$steps, missing relations ${missing:-?}, path $mrpt_len m vs odometry $odo_len m, error $mrpt_t m): no comparison" >&2
     continue
   fi
