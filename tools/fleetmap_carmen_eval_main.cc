@@ -39,7 +39,8 @@ options:
   --levels N           resolution levels                          [3]
   --png FILE           draw the log's map at the estimated poses
   --trajectory FILE    score the trajectory in FILE (lines `t x y theta`, e.g. another SLAM
-                       system's) with the same relations instead of running our matcher
+                       system's) with the same relations instead of running our matcher;
+                       with --png, FILE must hold one pose per scan
   --interpolate-odometry 0|1
                        odometry at each scan's time from the ODOM lines, rather than the
                        last ODOM before it (what FLASER lines carry)  [0]
@@ -228,6 +229,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "  %s: %zu poses\n", args.trajectory.c_str(), external->size());
     Print(name, "all", carmen::ScoreRelations(*relations, *external));
     Print(name, win, carmen::ScoreRelations(*relations, *external, args.window_s));
+    if (args.png.empty()) return 0;
+    if (external->size() != log->lasers.size())
+      return std::fprintf(stderr, "fleetmap-carmen-eval: --png needs one pose per scan\n"), 1;
+    const core::Status s = DrawMap(*log, *external, args.png);
+    if (!s.ok()) return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 1;
     return 0;
   }
   double ms_per_scan = 0;
