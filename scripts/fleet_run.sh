@@ -2,7 +2,8 @@
 # Runs the whole fleet on this host over real LCM UDP multicast on loopback, as on vehicles:
 # fleetmap-sim publishes every vehicle's SCAN_/ODOM_ (sensor group), one fleetmap-agent per
 # vehicle sends temporary maps (uplink group), fleetmap-aggregator merges them and sends the
-# changes back (downlink group); lcm-logger records each group. Then fleetmap-eval scores the
+# changes back (downlink group); fleetmap-record records each group (lcm-logger's format;
+# unlike lcm-logger it loses no message when the CPU is busy). Then fleetmap-eval scores the
 # recorded run against the simulator's truth, and `fleetmap-aggregator --replay` recomputes
 # the final map from the uplink log to show that it is the same, byte for byte.
 #
@@ -39,10 +40,9 @@ while [ $# -gt 0 ]; do
     *) echo "fleet_run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-for p in fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval; do
+for p in fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval fleetmap-record; do
   [ -x "$bin/$p" ] || { echo "fleet_run.sh: $bin/$p is missing: build first" >&2; exit 1; }
 done
-command -v lcm-logger >/dev/null || { echo "fleet_run.sh: lcm-logger missing (apt-get install liblcm-bin)" >&2; exit 1; }
 
 # Multicast on loopback: LCM needs a route for 224.0.0.0/4 and a receive buffer large enough
 # for bursts of map tiles (scripts/setup_multicast.sh says more).
@@ -106,8 +106,8 @@ trap 'echo "fleet_run.sh: interrupted" >&2; exit 130' INT TERM
 epoch=$(date +%s)
 echo "$epoch" >"$out/logs/epoch.txt"  # fleetmap-eval --epoch: message stamps - epoch = simulated s
 for group in sensor uplink downlink; do
-  "${run[@]}" lcm-logger -f --lcm-url="${!group}" "$out/logs/$group.lcmlog" \
-    >"$out/logs/logger_$group.txt" 2>&1 &
+  "${run[@]}" "$bin/fleetmap-record" --force --quiet --lcm-url "${!group}" \
+    "$out/logs/$group.lcmlog" >"$out/logs/logger_$group.txt" 2>&1 &
   loggers+=($!)
 done
 "${run[@]}" "$bin/fleetmap-aggregator" --map "$static_map" --state-dir "$out/state/aggregator" \

@@ -17,8 +17,7 @@
 #include "tests/agent_node/node_test_util.h"
 #include "tests/agent_node/temp_dir.h"
 #include "tests/support/multicast.h"
-
-extern char** environ;
+#include "tests/support/process.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
@@ -29,39 +28,9 @@ std::string Url(int group, int port) {
          "?ttl=0&recv_buf_size=8388608";
 }
 
-pid_t Spawn(const std::vector<std::string>& args, const std::string& out, const std::string& err) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  const int r = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return r == 0 ? pid : -1;
-}
-
-// Exit code, or -1 if it did not exit within the (generous) deadline.
-int WaitExit(pid_t pid, double limit_s) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
-  while (std::chrono::steady_clock::now() < end) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  kill(pid, SIGKILL);
-  waitpid(pid, nullptr, 0);
-  return -1;
-}
-
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using fleetmap::testing::ReadAll;
+using fleetmap::testing::Spawn;
+using fleetmap::testing::WaitExit;
 
 class Uplink {
  public:

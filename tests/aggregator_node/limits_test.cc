@@ -2,6 +2,8 @@
 // logged once, while another vehicle's temporary map is still merged.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "tests/aggregator_node/node_test_util.h"
 
 namespace fleetmap::aggregator::node {
@@ -45,6 +47,11 @@ TEST(AggregatorLimitsTest, AFloodingVehicleIsThrottledWhileAnotherIsMerged) {
   EXPECT_EQ(node->aggregator().store().version(), 1u);
 
   const NodeCounters& c = node->counters();
+  std::printf(
+      "flood: %lld tiles of v9 in 60 ms: throttled_tiles %lld, vehicle_maps_full %lld; "
+      "v1 merged %d\n",
+      (long long)flood_tiles, (long long)c.throttled_tiles, (long long)c.vehicle_maps_full,
+      v1_merged);
   EXPECT_GT(c.throttled_tiles, 0);  // over 100 tiles/s after a burst of 500
   EXPECT_LE(c.throttled_tiles, flood_tiles - 500 + 1);
   EXPECT_GT(c.vehicle_maps_full, 0);       // more than 4 incomplete maps of v9
