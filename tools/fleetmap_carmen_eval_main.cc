@@ -1,13 +1,9 @@
 // fleetmap-carmen-eval: runs the temporary-map builder's scan matcher over a CARMEN log and
 // scores its trajectory with the SLAM benchmark's relations, next to the log's odometry.
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -146,26 +142,6 @@ std::vector<carmen::TimedPose> RunMatcher(const carmen::CarmenLog& log, const Ar
   return trajectory;
 }
 
-// Lines `t x y theta`, sorted by time for ScoreRelations.
-core::Result<std::vector<carmen::TimedPose>> ReadTrajectory(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return core::NotFound(path + ": cannot open");
-  std::vector<carmen::TimedPose> trajectory;
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream f(line);
-    carmen::TimedPose p;
-    if (!(f >> p.stamp_s >> p.pose.x_m >> p.pose.y_m >> p.pose.theta_rad) ||
-        !std::isfinite(p.stamp_s + p.pose.x_m + p.pose.y_m + p.pose.theta_rad))
-      return core::InvalidArgument(path + ": line " + std::to_string(n) + ": not `t x y theta`");
-    trajectory.push_back(p);
-  }
-  std::stable_sort(trajectory.begin(), trajectory.end(),
-                   [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
-  return trajectory;
-}
-
 // Every scan inserted at its estimated pose into one grid covering the whole trajectory.
 core::Status DrawMap(const carmen::CarmenLog& log, const std::vector<carmen::TimedPose>& trajectory,
                      const std::string& path) {
@@ -221,7 +197,7 @@ int main(int argc, char** argv) {
   for (const auto& r : log->lasers) odometry.push_back({r.stamp_s, r.odom_pose});
   const std::string win = "win" + std::to_string(static_cast<int>(args.window_s));
   if (!args.trajectory.empty()) {
-    auto external = ReadTrajectory(args.trajectory);
+    auto external = carmen::ReadTrajectory(args.trajectory);
     if (!external.ok())
       return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n",
                           external.status().ToString().c_str()),

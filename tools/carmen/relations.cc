@@ -46,6 +46,25 @@ core::Result<std::vector<Relation>> ReadRelations(const std::string& path) {
   return relations;
 }
 
+core::Result<std::vector<TimedPose>> ReadTrajectory(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return core::NotFound(path + ": cannot open");
+  std::vector<TimedPose> trajectory;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream f(line);
+    TimedPose p;
+    if (!(f >> p.stamp_s >> p.pose.x_m >> p.pose.y_m >> p.pose.theta_rad) ||
+        !std::isfinite(p.stamp_s + p.pose.x_m + p.pose.y_m + p.pose.theta_rad))
+      return core::InvalidArgument(path + ": line " + std::to_string(n) + ": not `t x y theta`");
+    trajectory.push_back(p);
+  }
+  std::stable_sort(trajectory.begin(), trajectory.end(),
+                   [](const TimedPose& a, const TimedPose& b) { return a.stamp_s < b.stamp_s; });
+  return trajectory;
+}
+
 RelationErrors ScoreRelations(const std::vector<Relation>& relations,
                               const std::vector<TimedPose>& trajectory, double max_span_s) {
   RelationErrors e;

@@ -26,6 +26,10 @@ struct TimedPose {
   core::Pose2 pose;
 };
 
+// Another system's trajectory, lines "t x y theta" ('#' starts a comment line), sorted by
+// time as ScoreRelations wants it. InvalidArgument names a malformed line.
+core::Result<std::vector<TimedPose>> ReadTrajectory(const std::string& path);
+
 struct RelationErrors {
   int used = 0;     // relations scored
   int missing = 0;  // relations whose time stamps are not in the trajectory

@@ -1,0 +1,40 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "tools/carmen/relations.h"
+
+namespace fleetmap::carmen {
+namespace {
+
+std::string WriteFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(TrajectoryTest, ReadsSortsAndScoresAnotherSystemsTrajectory) {
+  // Out of order and with a comment, as another program may write it.
+  const std::string path =
+      WriteFile("trajectory.txt", "# t x y theta\n2.0 1.0 0.5 0.1\n1.0 0.0 0.0 0.0\n");
+  auto trajectory = ReadTrajectory(path);
+  ASSERT_TRUE(trajectory.ok()) << trajectory.status().ToString();
+  ASSERT_EQ(trajectory->size(), 2u);
+  EXPECT_DOUBLE_EQ((*trajectory)[0].stamp_s, 1.0);
+  EXPECT_DOUBLE_EQ((*trajectory)[1].pose.theta_rad, 0.1);
+  const std::vector<Relation> relations = {{1.0, 2.0, core::Pose2(1.0, 0.5, 0.1)}};
+  const RelationErrors e = ScoreRelations(relations, *trajectory);
+  EXPECT_EQ(e.used, 1);
+  EXPECT_NEAR(e.trans_mean_m, 0.0, 1e-12);
+}
+
+TEST(TrajectoryTest, MalformedLinesAndMissingFilesAreErrors) {
+  auto bad = ReadTrajectory(WriteFile("bad_trajectory.txt", "1.0 0.0 0.0 0.0\n2.0 nan 0 0\n"));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().ToString().find("line 2"), std::string::npos);
+  EXPECT_FALSE(ReadTrajectory(::testing::TempDir() + "no_such_trajectory.txt").ok());
+}
+
+}  // namespace
+}  // namespace fleetmap::carmen
