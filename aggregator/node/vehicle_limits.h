@@ -19,14 +19,16 @@ struct VehicleLimitOptions {
   // together: assembler.max_pending_maps), so one vehicle cannot take every slot.
   int max_pending_maps_per_vehicle = 4;
   // Tiles one vehicle may send, tiles/s > 0, after a burst of tile_burst (>= 1). A 20 m
-  // temporary map is 49 tiles, sent at most every 2 s; resends double their interval.
-  double tiles_per_s = 100.0;
-  double tile_burst = 500.0;
+  // temporary map is 49 tiles; an agent's uplink pacer sends at most 400 tiles/s.
+  double tiles_per_s = 400.0;
+  double tile_burst = 1000.0;
   // Complete maps of one vehicle that go to the merge, per minute > 0, after a burst of
   // merge_burst (>= 1). A map over the rate is kept unacknowledged, and merged when the
-  // vehicle resends it once the rate allows (as after a failed journal write).
-  double merges_per_min = 20.0;
-  double merge_burst = 5.0;
+  // vehicle resends it once the rate allows (as after a failed journal write). A vehicle
+  // closes a temporary map at most every divergence.min_duration_s (2 s): 30 a minute; an
+  // uplink log replayed 16 times faster than real (tests/fleet) stays below.
+  double merges_per_min = 60.0;
+  double merge_burst = 20.0;
   // Vehicles tracked at once, >= 1; beyond, idle ones are forgotten first.
   int max_vehicles = 1024;
   core::Status Validate() const;

@@ -52,8 +52,9 @@ TEST(AggregatorLimitsTest, AFloodingVehicleIsThrottledWhileAnotherIsMerged) {
       "v1 merged %d\n",
       (long long)flood_tiles, (long long)c.throttled_tiles, (long long)c.vehicle_maps_full,
       v1_merged);
-  EXPECT_GT(c.throttled_tiles, 0);  // over 100 tiles/s after a burst of 500
-  EXPECT_LE(c.throttled_tiles, flood_tiles - 500 + 1);
+  const VehicleLimitOptions limits;
+  EXPECT_GT(c.throttled_tiles, 0);  // over tiles_per_s after a burst of tile_burst
+  EXPECT_LE(c.throttled_tiles, flood_tiles - static_cast<int64_t>(limits.tile_burst) + 1);
   EXPECT_GT(c.vehicle_maps_full, 0);       // more than 4 incomplete maps of v9
   EXPECT_EQ(node->incomplete_maps(), 4u);  // v9's four; v1's map completed
   EXPECT_EQ(node->throttled_vehicles(), 1);
