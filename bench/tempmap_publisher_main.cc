@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/version.h"
 #include "fleetmap/tempmap_tile_t.hpp"
 
 namespace {
@@ -70,6 +71,7 @@ int64_t NowUtime() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-bench-tempmap-publisher")) return 0;
   std::string log_path, url;
   int vehicles = 10;
   double period_s = 10, duration_s = 60;

@@ -24,6 +24,7 @@
 #include <exception>
 #include <string>
 
+#include "core/version.h"
 #include "tools/carmen/carmen_log.h"
 
 namespace {
@@ -66,6 +67,7 @@ mrpt::obs::CObservation2DRangeScan::Ptr ToMrpt(const carmen::LaserRecord& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-bench-carmen2rawlog")) return 0;
   if (argc != 4) return std::fputs(kUsage, argc == 2 ? stdout : stderr), argc == 2 ? 0 : 2;
   auto log = carmen::ReadCarmenLog(argv[1]);
   if (!log.ok())
