@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Runs one libFuzzer target for a bounded time or number of executions, niced, and reports:
+#   fuzz.<target>.execs N
+#   fuzz.<target>.crashes N     inputs saved as crash-/leak-/timeout-/oom- by this run
+# Exit status: 0 without a crash, 1 with one (the fuzzer's log tail goes to stderr), 2 on usage.
+# Usage: fuzz/run_fuzzer.sh BINARY (--seconds N | --runs N) [--seeds DIR] [--work DIR]
+#                           [-- LIBFUZZER_FLAG ...]
+# BINARY is <target>_fuzz. Under --work (default ./fuzz-work): corpus/<target>/ (grows from run
+# to run; libFuzzer writes new inputs to the first folder), artifacts/<target>/, logs/<target>.log.
+set -uo pipefail
+
+usage() { sed -n '2,9p' "$0" >&2; }
+(($# >= 1)) || { usage; exit 2; }
+binary=$1
+shift
+seconds="" runs="" seeds="" work=./fuzz-work
+extra=()
+while (($#)); do
+  case $1 in
+    --seconds) seconds=${2:?}; shift 2 ;;
+    --runs) runs=${2:?}; shift 2 ;;
+    --seeds) seeds=${2:?}; shift 2 ;;
+    --work) work=${2:?}; shift 2 ;;
+    --) shift; extra=("$@"); break ;;
+    *) usage; exit 2 ;;
+  esac
+done
+[[ -x $binary && ( -n $seconds || -n $runs ) ]] || { usage; exit 2; }
+
+name=$(basename "$binary")
+name=${name%_fuzz}
+corpus=$work/corpus/$name
+artifacts=$work/artifacts/$name
+log=$work/logs/$name.log
+mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
+
+limits=()
+[[ -n $seconds ]] && limits+=("-max_total_time=$seconds")
+[[ -n $runs ]] && limits+=("-runs=$runs")
+dirs=("$corpus")
+[[ -n $seeds && -d $seeds ]] && dirs+=("$seeds")
+
+count_artifacts() {
+  find "$artifacts" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'leak-*' -o \
+    -name 'timeout-*' -o -name 'oom-*' \) | wc -l
+}
+before=$(count_artifacts)
+# A single input slower than 20 s or a process over 2.5 GB is a finding (timeout-, oom-).
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+nice -n 19 "$binary" "${limits[@]}" -print_final_stats=1 -timeout=20 -rss_limit_mb=2560 \
+  -artifact_prefix="$artifacts/" "${extra[@]}" "${dirs[@]}" >"$log" 2>&1
+rc=$?
+
+execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -n 1 | grep -o '[0-9]*$')
+if [[ -z $execs ]]; then  # no final statistics (killed): the last progress line, "#N ..."
+  execs=$(grep -o '^#[0-9]*' "$log" | tail -n 1 | tr -d '#')
+fi
+crashes=$(($(count_artifacts) - before))
+((rc != 0 && crashes == 0)) && crashes=1  # it failed without saving an input: still a failure
+echo "fuzz.$name.execs ${execs:-0}"
+echo "fuzz.$name.crashes $crashes"
+if ((crashes > 0)); then
+  echo "run_fuzzer: $name failed (exit $rc); inputs in $artifacts, log $log:" >&2
+  tail -n 60 "$log" >&2
+  exit 1
+fi
+exit 0
