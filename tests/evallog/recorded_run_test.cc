@@ -9,6 +9,7 @@
 #include "core/temp_map_tiles.h"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/merge_report_t.hpp"
+#include "fleetmap/status_t.hpp"
 #include "lcmtypes/convert.h"
 #include "lcmtypes/transport_convert.h"
 #include "tests/sim/sim_test_util.h"
@@ -189,6 +190,41 @@ TEST_F(RecordedRunTest, AVehicleThatNeverHoldsTheChangeIsCounted) {
   ASSERT_TRUE(run.ok()) << run.status().ToString();
   EXPECT_TRUE(run->fleet.change_latency_s.empty());
   EXPECT_EQ(run->fleet.changes_not_everywhere, 1);
+}
+
+// Two agents' STATUS over 20 s of wall clock and 40 simulated seconds (the simulator at 2x):
+// alpha used 2 s of CPU (10 % of one core; 5 % in real time), beta 4 s (20 %; 10 %).
+TEST_F(RecordedRunTest, AgentCpuAndMemoryComeFromTheirStatus) {
+  auto status = [](const std::string& id, int64_t cpu_us, int64_t rss_kb) {
+    fleetmap::status_t s{};
+    s.process = "agent_" + id;
+    s.counter_names = {"scans", "cpu_time_us", "rss_kb"};
+    s.counter_values = {7, cpu_us, rss_kb};
+    s.num_counters = 3;
+    return s;
+  };
+  {
+    lcm::LogFile log(path_, "w");
+    Log(log, 0.0, "STATUS_agent_alpha", status("alpha", 1'000'000, 20'000));
+    Log(log, 0.0, "STATUS_agent_beta", status("beta", 500'000, 30'000));
+    Log(log, 10.0, "STATUS_agent_alpha", status("alpha", 2'000'000, 25'600));
+    Log(log, 20.0, "STATUS_agent_alpha", status("alpha", 3'000'000, 24'000));
+    Log(log, 20.0, "STATUS_agent_beta", status("beta", 4'500'000, 30'000));
+    Log(log, 20.0, "STATUS_aggregator", status("x", 99'000'000, 900'000));  // not an agent
+  }
+  RecordedRunOptions options;
+  options.epoch_s = kEpoch;
+  options.duration_s = 40.0;
+  auto run = ReadRecordedRun({path_}, *world_, options);
+  ASSERT_TRUE(run.ok()) << run.status().ToString();
+  ASSERT_EQ(run->fleet.agent_usage.size(), 2u);
+  std::map<std::string, double> figures;
+  for (const auto& [k, v] : FleetJsonPairs(run->fleet)) figures[k] = std::atof(v.c_str());
+  EXPECT_NEAR(figures["agent.cpu_percent"], 15.0, 1e-6);
+  EXPECT_NEAR(figures["agent.cpu_percent_realtime"], 7.5, 1e-6);
+  EXPECT_NEAR(figures["agent.rss_mb"], 30'000 / 1024.0, 1e-3);
+  EXPECT_NE(FleetFigureLines(run->fleet).find("agent.cpu_percent 15 %"), std::string::npos)
+      << FleetFigureLines(run->fleet);
 }
 
 TEST(RecordedRunErrorsTest, MissingOrEmptyLogsAreErrors) {

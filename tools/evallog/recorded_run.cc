@@ -10,6 +10,7 @@
 #include "core/map_replica.h"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/merge_report_t.hpp"
+#include "fleetmap/status_t.hpp"
 #include "lcmtypes/convert.h"
 #include "lcmtypes/transport_convert.h"
 
@@ -69,6 +70,7 @@ class Reader {
       return OnMapTile(e);
     if (StartsWith(e.channel, "DIVERGENCE_")) return OnDivergence(e);
     if (StartsWith(e.channel, "POSE_")) return OnPose(e);
+    if (StartsWith(e.channel, "STATUS_agent_")) return OnAgentStatus(e);
   }
 
   RecordedRun Finish(int64_t first_wall, int64_t last_wall) {
@@ -216,6 +218,27 @@ class Reader {
                                       msg->d, msg->state == fleetmap::divergence_t::BUILDING});
   }
 
+  void OnAgentStatus(const Event& e) {
+    auto msg = DecodeOrCount<fleetmap::status_t>(e);
+    if (!msg) return;
+    int64_t cpu_us = -1, rss_kb = -1;
+    const size_t n = std::min(msg->counter_names.size(), msg->counter_values.size());
+    for (size_t i = 0; i < n; ++i) {
+      if (msg->counter_names[i] == "cpu_time_us") cpu_us = msg->counter_values[i];
+      if (msg->counter_names[i] == "rss_kb") rss_kb = msg->counter_values[i];
+    }
+    if (cpu_us < 0) return;  // an agent that does not report its usage
+    auto [it, first] = record_.fleet.agent_usage.try_emplace(msg->process);
+    AgentUsage& u = it->second;
+    if (first) {
+      u.first_wall_utime = e.wall_utime;
+      u.first_cpu_us = cpu_us;
+    }
+    u.last_wall_utime = e.wall_utime;
+    u.last_cpu_us = cpu_us;
+    u.max_rss_kb = std::max(u.max_rss_kb, rss_kb);
+  }
+
   void OnPose(const Event& e) {
     auto msg = DecodeOrCount<fleetmap::pose_with_covariance_t>(e);
     if (!msg) return;
@@ -310,6 +333,26 @@ std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigur
   kv.emplace_back("fleet.vehicles_holding_final_version", std::to_string(holding));
   kv.emplace_back("fleet.malformed_messages", std::to_string(f.malformed_messages));
   kv.emplace_back("fleet.map_messages_refused", std::to_string(f.map_messages_refused));
+  // The agents' cost, from their STATUS: only agents seen over more than a few seconds.
+  double cpu_share_sum = 0.0, cpu_per_sim_sum = 0.0;
+  int agents = 0;
+  int64_t rss_kb = -1;
+  for (const auto& [process, u] : f.agent_usage) {
+    rss_kb = std::max(rss_kb, u.max_rss_kb);
+    const double wall_s = (u.last_wall_utime - u.first_wall_utime) * 1e-6;
+    if (wall_s < 5.0) continue;
+    const double cpu_s = (u.last_cpu_us - u.first_cpu_us) * 1e-6;
+    cpu_share_sum += cpu_s / wall_s;
+    // Simulated seconds in that span: the run's rate span over its wall span.
+    cpu_per_sim_sum +=
+        cpu_s / (wall_s * std::max(f.rate_span_s, 1e-9) / std::max(f.wall_span_s, 1e-9));
+    ++agents;
+  }
+  if (agents > 0) {
+    kv.emplace_back("agent.cpu_percent", Num(100.0 * cpu_share_sum / agents));
+    kv.emplace_back("agent.cpu_percent_realtime", Num(100.0 * cpu_per_sim_sum / agents));
+  }
+  if (rss_kb >= 0) kv.emplace_back("agent.rss_mb", Num(rss_kb / 1024.0));
   return kv;
 }
 
@@ -323,7 +366,14 @@ std::string FleetFigureLines(const FleetFigures& f) {
     const bool seconds =
         key == "fleet.wall_span_s" || key == "fleet.rate_span_s" ||
         (key.rfind("fleet.change_latency_s.", 0) == 0 && key != "fleet.change_latency_s.count");
-    const char* unit = per_s ? "B/s" : rate ? "1/s" : size ? "B" : seconds ? "s" : "count";
+    const bool percent = key.rfind("agent.cpu_percent", 0) == 0;
+    const char* unit = per_s                   ? "B/s"
+                       : rate                  ? "1/s"
+                       : size                  ? "B"
+                       : seconds               ? "s"
+                       : percent               ? "%"
+                       : key == "agent.rss_mb" ? "MB"
+                                               : "count";
     out += key + " " + value + " " + unit + "\n";
   }
   return out;

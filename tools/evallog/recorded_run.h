@@ -31,6 +31,13 @@ struct ChannelTraffic {
   int64_t bytes = 0;
 };
 
+// What one agent process cost, from its STATUS_agent_<id> counters cpu_time_us and rss_kb.
+struct AgentUsage {
+  int64_t first_wall_utime = 0, last_wall_utime = 0;  // logger's stamps of the first/last STATUS
+  int64_t first_cpu_us = 0, last_cpu_us = 0;          // the process's CPU time then
+  int64_t max_rss_kb = 0;                             // largest resident set reported
+};
+
 struct FleetFigures {
   double wall_span_s = 0.0;  // first to last logged message, wall-clock seconds
   double rate_span_s = 0.0;  // the denominator of the rates: simulated (or wall) seconds
@@ -43,6 +50,7 @@ struct FleetFigures {
   int32_t final_version = -1;                              // from MAP_DELTA / MAP_KEYFRAME
   int malformed_messages = 0;                              // logged but not decodable
   int map_messages_refused = 0;                            // decodable map tiles refused
+  std::map<std::string, AgentUsage> agent_usage;           // by process (agent_<id>)
 };
 
 struct RecordedRun {
@@ -60,7 +68,10 @@ core::Result<RecordedRun> ReadRecordedRun(const std::vector<std::string>& log_pa
 
 namespace fleetmap::evallog {
 // The fleet figures as `"key": value` pairs for report.json (fleet.bytes_per_s.<CHANNEL>,
-// fleet.change_latency_s.*, ...), and as `name value unit` figure lines.
+// fleet.change_latency_s.*, ...; agent.cpu_percent: CPU of one agent process in % of one core
+// over the wall-clock time of the run, the mean over the agents; agent.cpu_percent_realtime:
+// the same per simulated second, what an agent costs at real time when the simulator ran
+// faster; agent.rss_mb: the largest resident set of any agent), and as figure lines.
 std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigures& fleet);
 std::string FleetFigureLines(const FleetFigures& fleet);
 }  // namespace fleetmap::evallog

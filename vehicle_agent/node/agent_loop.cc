@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "vehicle_agent/node/process_usage.h"
+
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
@@ -9,6 +11,8 @@ namespace {
 constexpr double kCanWaitS = 0.01;
 // A scanner's client waits on its own socket: the LCM links are looked at between scans.
 constexpr double kScannerWaitS = 0.02;
+// How often the process's CPU time and memory are read for STATUS (a /proc read each time).
+constexpr double kUsagePeriodS = 1.0;
 
 NamedCounters InputCounters(const LoopSources& sources) {
   NamedCounters out;
@@ -29,6 +33,7 @@ core::Status RunAgentLoop(AgentNode& node, const LoopSources& sources, const Loo
                           const volatile std::sig_atomic_t* stop,
                           const std::function<double()>& clock) {
   const double start_s = clock();
+  double usage_read_s = start_s - kUsagePeriodS;
   core::Status failure;
   while (!*stop) {
     if (options.duration_s > 0.0 && clock() - start_s >= options.duration_s) break;
@@ -50,7 +55,12 @@ core::Status RunAgentLoop(AgentNode& node, const LoopSources& sources, const Loo
         node.OnDriverOdometry(odom);
     }
     if (sources.scanner || sources.odometry) node.SetInputCounters(InputCounters(sources));
-    node.Tick(clock());
+    const double now_s = clock();
+    if (now_s - usage_read_s >= kUsagePeriodS) {
+      node.SetProcessCounters(ProcessUsageCounters());
+      usage_read_s = now_s;
+    }
+    node.Tick(now_s);
   }
   node.Shutdown(clock());
   return failure;

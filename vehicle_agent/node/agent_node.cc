@@ -441,6 +441,7 @@ NamedCounters AgentNode::AllCounters() const {
   out.emplace_back("tempmaps_pending", static_cast<int64_t>(outbox_.pending()));
   out.emplace_back("tiles_queued", static_cast<int64_t>(sends_.size()));
   out.insert(out.end(), input_counters_.begin(), input_counters_.end());
+  out.insert(out.end(), process_counters_.begin(), process_counters_.end());
   for (const auto& named : auth::Named(verifier_.counters())) out.push_back(named);
   return out;
 }

@@ -45,6 +45,8 @@ class AgentNode {
   void OnDriverOdometry(const core::OdometrySample& odom);
   // The drivers' counters, reported in STATUS after the node's own.
   void SetInputCounters(NamedCounters counters) { input_counters_ = std::move(counters); }
+  // What the process costs (process_usage.h), set by the loop; reported in STATUS as is.
+  void SetProcessCounters(NamedCounters counters) { process_counters_ = std::move(counters); }
 
   // Applies a new map version, processes the queued inputs, sends what is due.
   void Tick(double now_s);
@@ -115,6 +117,7 @@ class AgentNode {
   double next_status_s_;
   AgentNodeCounters counters_;
   NamedCounters input_counters_;
+  NamedCounters process_counters_;
   auth::Signer signer_;
   auth::Verifier verifier_;
 };
