@@ -8,8 +8,11 @@
 #include <string>
 
 #include "auth/key.h"
+#include "core/version.h"
 
 int main(int argc, char** argv) {
+  // A key file cannot be named --version: asking for the version writes no key.
+  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-keygen")) return 0;
   if (argc != 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") {
     std::fprintf(argc == 2 ? stdout : stderr,
                  "usage: fleetmap-keygen FILE\n"

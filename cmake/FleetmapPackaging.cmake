@@ -14,7 +14,7 @@
 set(fleetmap_pkg_dir "${PROJECT_SOURCE_DIR}/packaging")
 # Packaging builds only what it ships (target fleetmap_packaged), not the tests and benchmarks.
 set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
-set(fleetmap_packaged_targets fleetmap-agent fleetmap-aggregator fleetmap-mapctl fleetmap-keygen fleetmap-sim
+set(fleetmap_packaged_targets fleetmap-agent fleetmap-aggregator fleetmap-mapctl fleetmap-keygen fleetmap-record fleetmap-sim
     fleetmap-eval fleetmap-maptool fleetmap-sick-emulator fleetmap-sim-candump
     fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool)
 add_custom_target(fleetmap_packaged)
@@ -42,7 +42,8 @@ install(FILES "${fleetmap_pkg_dir}/etc/agent-example.yaml" DESTINATION /etc/flee
         COMPONENT agent)
 
 # fleetmap-aggregator
-install(TARGETS fleetmap-aggregator fleetmap-mapctl fleetmap-keygen RUNTIME DESTINATION bin COMPONENT aggregator)
+install(TARGETS fleetmap-aggregator fleetmap-mapctl fleetmap-keygen fleetmap-record RUNTIME DESTINATION bin
+        COMPONENT aggregator)
 install(FILES "${fleetmap_pkg_dir}/systemd/fleetmap-aggregator.service"
         DESTINATION "${fleetmap_unit_dir}" COMPONENT aggregator)
 install(FILES "${fleetmap_pkg_dir}/etc/aggregator.yaml" "${fleetmap_pkg_dir}/etc/aggregator.env"

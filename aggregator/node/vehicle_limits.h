@@ -16,8 +16,11 @@ struct VehicleLimitOptions {
   // temporary-map tile is at most ~4.2 KB (64 x 64 int8 cells, incompressible).
   int max_received_bytes = 65536;
   // Incomplete temporary maps one vehicle may have at once, maps >= 1 (all vehicles
-  // together: assembler.max_pending_maps), so one vehicle cannot take every slot.
-  int max_pending_maps_per_vehicle = 4;
+  // together: assembler.max_pending_maps, 32), so one vehicle cannot take every slot. Not
+  // much fewer: on a lossy link most maps miss a tile or two and wait for a resend while the
+  // vehicle closes a new one every few seconds (with 4, a 3-vehicle fleet at 30% loss kept
+  // every vehicle at its limit and refused new maps all run long).
+  int max_pending_maps_per_vehicle = 16;
   // Tiles one vehicle may send, tiles/s > 0, after a burst of tile_burst (>= 1). A 20 m
   // temporary map is 49 tiles; an agent's uplink pacer sends at most 400 tiles/s.
   double tiles_per_s = 400.0;

@@ -66,6 +66,7 @@ pass "control data"
 # Files where docs/deployment.md says.
 files=(
   usr/bin/fleetmap-agent usr/bin/fleetmap-aggregator usr/bin/fleetmap-mapctl usr/bin/fleetmap-keygen
+  usr/bin/fleetmap-record
   usr/bin/fleetmap-sim usr/bin/fleetmap-eval usr/bin/fleetmap-maptool usr/bin/fleetmap-sick-emulator
   usr/bin/fleetmap-sim-candump usr/bin/fleetmap-carmen-eval usr/bin/fleetmap-publish-samples
   usr/bin/fleetmap-lan-tool usr/bin/fleetmap-lan-experiment usr/bin/fleetmap-spy
@@ -88,12 +89,9 @@ pass "${#files[@]} files in place"
 # Every program answers --version (the project's version) and --help (exit 0, some text).
 for f in "$root"/usr/bin/*; do
   name=$(basename "$f")
-  if [[ $name == fleetmap-keygen ]]; then
-    : # FILE is its only argument: --version would be taken as a file name
-  else
-    out=$(cd "$work" && "$f" --version 2>&1) || fail "$name --version exits $?"
-    [[ $out == *"$version"* ]] || fail "$name --version prints '$out'"
-  fi
+  out=$(cd "$work" && "$f" --version 2>&1) || fail "$name --version exits $?"
+  [[ $out == *"$version"* ]] || fail "$name --version prints '$out'"
+  [[ ! -e $work/--version ]] || fail "$name --version wrote a file named --version"
   out=$(cd "$work" && "$f" --help 2>&1) || fail "$name --help exits $?"
   [[ ${#out} -gt 40 ]] || fail "$name --help prints too little: '$out'"
 done

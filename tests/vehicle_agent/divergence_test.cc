@@ -100,8 +100,10 @@ TEST(DivergenceTest, HysteresisNeedsAClearDivergenceAndHoldsTheMap) {
 TEST(DivergenceTest, HysteresisSplitsAVeryLongChangeAtMaxDuration) {
   DivergenceOptions o;
   o.warm_up = false;
-  o.alpha_slow = 0.0;  // the long-term average never absorbs the change
+  o.alpha_slow = 0.0;      // the long-term average never absorbs the change
+  o.min_duration_s = 2.0;  // Validate(): at most max_duration_s (the default is 20 s)
   o.max_duration_s = 4.0;
+  ASSERT_TRUE(o.Validate().ok());
   DivergenceDetector detector(o);
   double t = 0.0;
   for (; t < 1.0; t += kScan_s) detector.Update(t, 1.0, 0.0);
