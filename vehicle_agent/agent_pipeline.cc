@@ -60,7 +60,7 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   const bool valid = scan.Validate().ok();
   const std::optional<double> previous_s = last_scan_stamp_s_;
   if (valid) last_scan_stamp_s_ = scan.stamp_s;
-  if (valid && previous_s && scan.stamp_s < *previous_s - kClockStepBackS && builder_.building()) {
+  if (valid && previous_s && IsClockStepBack(scan.stamp_s, *previous_s) && builder_.building()) {
     // The clock was set back: a map's times must run forward, so this one closes where the
     // clock was, and the change goes on in a new one.
     step.closed_map = builder_.Close(*previous_s);

@@ -38,7 +38,7 @@ DivergenceDetector::DivergenceDetector(const DivergenceOptions& options) : optio
 DivergenceSample DivergenceDetector::Update(double stamp_s, double w_avg, double omega_radps) {
   if (!std::isfinite(stamp_s) || !std::isfinite(w_avg) || w_avg < 0 || std::isnan(omega_radps))
     return Dropped(stamp_s, w_avg, stats_.dropped_invalid);
-  const bool clock_step = has_stamp_ && stamp_s < last_stamp_s_ - kClockStepBackS;
+  const bool clock_step = has_stamp_ && IsClockStepBack(stamp_s, last_stamp_s_);
   if (has_stamp_ && stamp_s < last_stamp_s_ && !clock_step)
     return Dropped(stamp_s, w_avg, stats_.dropped_out_of_order);
   // The clock was set back: a temporary map's duration goes on from where it was.

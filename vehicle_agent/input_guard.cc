@@ -14,7 +14,7 @@ OdometryTracker::Outcome OdometryTracker::Add(const core::OdometrySample& odom) 
     last_ = odom;
     return Outcome::kFirst;
   }
-  const bool clock_step = odom.stamp_s < last_.stamp_s - kClockStepBackS;
+  const bool clock_step = IsClockStepBack(odom.stamp_s, last_.stamp_s);
   if (odom.stamp_s < last_.stamp_s && !clock_step) return Outcome::kOutOfOrder;
   const core::Pose2 step = core::Between(last_.pose_in_odom, odom.pose_in_odom);
   last_ = odom;
@@ -28,7 +28,7 @@ OdometryTracker::Outcome OdometryTracker::Add(const core::OdometrySample& odom) 
 
 ScanGate::Outcome ScanGate::Check(const core::LaserScan& scan, const core::Pose2& scanner_in_base) {
   if (!scan.Validate().ok() || !scanner_in_base.IsFinite()) return Outcome::kInvalid;
-  const bool clock_step = has_scan_ && scan.stamp_s < last_stamp_s_ - kClockStepBackS;
+  const bool clock_step = has_scan_ && IsClockStepBack(scan.stamp_s, last_stamp_s_);
   if (has_scan_ && !(scan.stamp_s > last_stamp_s_) && !clock_step) return Outcome::kOutOfOrder;
   layout_changed_ = has_scan_ && (scan.size() != beams_ || scan.angle_min_rad != angle_min_rad_ ||
                                   scan.angle_increment_rad != angle_increment_rad_);

@@ -16,6 +16,11 @@ namespace fleetmap::vehicle_agent {
 // caught up again, an hour for an hour's step (issue 9's clock-jump test).
 constexpr double kClockStepBackS = 2.0;
 
+// True when `stamp_s` is the clock set back from `last_s` (see kClockStepBackS).
+inline bool IsClockStepBack(double stamp_s, double last_s) {
+  return stamp_s < last_s - kClockStepBackS;
+}
+
 // Composes the accepted odometry increments into a "clean" odometry pose: the odometry frame
 // with every dropped increment cut out. Poses derived from it never see a jump.
 class OdometryTracker {

@@ -28,9 +28,9 @@ std::string Url(int group, int port) {
          "?ttl=0&recv_buf_size=8388608";
 }
 
-using fleetmap::testing::ReadAll;
-using fleetmap::testing::Spawn;
-using fleetmap::testing::WaitExit;
+using fleetmap::testing::Process;
+using fleetmap::testing::ReadText;
+using fleetmap::testing::RunToExit;
 
 class Uplink {
  public:
@@ -63,31 +63,31 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
   const core::Pose2 start = world.VehicleStateAt(0, 0.0).pose;
   const std::string pose = std::to_string(start.x_m) + "," + std::to_string(start.y_m) + "," +
                            std::to_string(start.theta_rad);
-  const pid_t agent = Spawn({FLEETMAP_AGENT_BINARY,
-                             "--vehicle-id",
-                             "v1",
-                             "--map",
-                             dir / "room.yaml",
-                             "--initial-pose",
-                             pose,
-                             "--scanner-mount",
-                             "0.3,0,0",
-                             "--sensor-url",
-                             sensor,
-                             "--uplink-url",
-                             uplink,
-                             "--downlink-url",
-                             downlink,
-                             "--state-dir",
-                             dir / "state",
-                             "--final-map",
-                             dir / "final.yaml",
-                             "--quiet"},
-                            dir / "out.txt", dir / "err.txt");
-  ASSERT_GT(agent, 0);
+  Process agent({FLEETMAP_AGENT_BINARY,
+                 "--vehicle-id",
+                 "v1",
+                 "--map",
+                 dir / "room.yaml",
+                 "--initial-pose",
+                 pose,
+                 "--scanner-mount",
+                 "0.3,0,0",
+                 "--sensor-url",
+                 sensor,
+                 "--uplink-url",
+                 uplink,
+                 "--downlink-url",
+                 downlink,
+                 "--state-dir",
+                 dir / "state",
+                 "--final-map",
+                 dir / "final.yaml",
+                 "--quiet"},
+                dir / "out.txt", dir / "err.txt");
+  ASSERT_TRUE(agent.started());
   // The agent is up once its first heartbeat arrives (deadline only against a hang).
   for (int i = 0; i < 200 && received.status.empty(); ++i) uplink_lcm.handleTimeout(50);
-  ASSERT_FALSE(received.status.empty()) << ReadAll(dir / "err.txt");
+  ASSERT_FALSE(received.status.empty()) << ReadText(dir / "err.txt");
 
   // 16 simulated seconds at 4x.
   const double epoch = 1.7e9;
@@ -114,8 +114,8 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
     }
   }
   for (int i = 0; i < 10; ++i) uplink_lcm.handleTimeout(50);  // the last poses
-  kill(agent, SIGINT);
-  EXPECT_EQ(WaitExit(agent, 20.0), 0) << ReadAll(dir / "err.txt");
+  agent.Signal(SIGINT);
+  EXPECT_EQ(agent.Wait(20.0), 0) << ReadText(dir / "err.txt");
   while (uplink_lcm.handleTimeout(200) > 0) {  // its last STATUS, sent at exit
   }
 
@@ -143,7 +143,7 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
   }
   EXPECT_GT(close, static_cast<int>(received.poses.size()) * 9 / 10);
   // The final line and the final map.
-  const std::string out = ReadAll(dir / "out.txt");
+  const std::string out = ReadText(dir / "out.txt");
   EXPECT_EQ(out.rfind("agent v1: scans ", 0), 0u) << out;
   EXPECT_NE(out.find(" map_version 0 tempmaps 0"), std::string::npos) << out;
   auto final_map = core::LoadMapServerMap(dir / "final.yaml");
@@ -153,22 +153,20 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
 
 TEST(AgentProcessTest, BadFlagsAndAMissingMapFailWithAClearMessage) {
   testing::TempDir dir;
-  EXPECT_EQ(
-      WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v 1"}, dir / "o", dir / "e"), 20), 2);
-  EXPECT_NE(ReadAll(dir / "e").find("vehicle_id"), std::string::npos);
-  EXPECT_EQ(WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--initial-pose", "1,2"},
-                           dir / "o", dir / "e"),
-                     20),
+  // Output is appended: each run writes files of its own.
+  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v 1"}, dir / "o1", dir / "e1", 20),
             2);
-  EXPECT_NE(ReadAll(dir / "e").find("X,Y,THETA"), std::string::npos);
-  EXPECT_EQ(
-      WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--map", dir / "none.yaml"},
-                     dir / "o", dir / "e"),
-               20),
-      1);
-  EXPECT_NE(ReadAll(dir / "e").find("none.yaml"), std::string::npos);
-  EXPECT_EQ(WaitExit(Spawn({FLEETMAP_AGENT_BINARY, "--help"}, dir / "o", dir / "e"), 20), 0);
-  EXPECT_NE(ReadAll(dir / "o").find("--initial-pose"), std::string::npos);
+  EXPECT_NE(ReadText(dir / "e1").find("vehicle_id"), std::string::npos);
+  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--initial-pose", "1,2"},
+                      dir / "o2", dir / "e2", 20),
+            2);
+  EXPECT_NE(ReadText(dir / "e2").find("X,Y,THETA"), std::string::npos);
+  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--map", dir / "none.yaml"},
+                      dir / "o3", dir / "e3", 20),
+            1);
+  EXPECT_NE(ReadText(dir / "e3").find("none.yaml"), std::string::npos);
+  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--help"}, dir / "o4", dir / "e4", 20), 0);
+  EXPECT_NE(ReadText(dir / "o4").find("--initial-pose"), std::string::npos);
 }
 
 }  // namespace

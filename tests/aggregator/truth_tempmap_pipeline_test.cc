@@ -8,19 +8,7 @@
 namespace fleetmap::eval {
 namespace {
 
-// A 10 m x 6 m room with a box there from the start and one that comes and goes; one vehicle
-// drives back and forth past both.
-constexpr const char* kRoom = R"(
-name: room
-map: room.yaml
-duration_s: 70
-seed: 4
-objects:
-  - {id: box_a, rect: {center: [3, 1.5], size: [0.8, 0.6]}}
-  - {id: box_b, rect: {center: [7, 4.5], size: [1.0, 0.8]}, appear_s: 5, disappear_s: 40}
-vehicles:
-  - {id: v1, route: [[1.013, 3.027], [9.013, 3.027]], loop: true, speed_mps: 1.0}
-)";
+constexpr const char* kRoom = sim::testing::kRoomWithBoxesScenario;
 
 class TruthTempMapPipelineTest : public ::testing::Test {
  protected:

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -19,9 +20,9 @@
 namespace {
 
 namespace fs = std::filesystem;
-using fleetmap::testing::ReadAll;
-using fleetmap::testing::Spawn;
-using fleetmap::testing::WaitExit;
+using fleetmap::testing::Process;
+using fleetmap::testing::ReadText;
+using fleetmap::testing::RunToExit;
 
 // This test's own group and port (other tests use other ones).
 const std::string kUrl = "udpm://239.255.78.1:7831?ttl=0&recv_buf_size=8388608";
@@ -35,17 +36,17 @@ class RecordTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  pid_t StartRecorder(const std::vector<std::string>& extra) {
+  std::unique_ptr<Process> StartRecorder(const std::vector<std::string>& extra) {
     std::vector<std::string> args = {FLEETMAP_RECORD_BINARY, "--lcm-url", kUrl, "--quiet"};
     args.insert(args.end(), extra.begin(), extra.end());
-    const pid_t pid = Spawn(args, dir_ / "out.txt", dir_ / "err.txt");
+    auto recorder = std::make_unique<Process>(args, dir_ / "out.txt", dir_ / "err.txt");
     // Give it time to join the group; messages sent before that are not this test's concern.
     std::this_thread::sleep_for(std::chrono::milliseconds(700));
-    return pid;
+    return recorder;
   }
-  int Stop(pid_t pid) {
-    kill(pid, SIGTERM);
-    return WaitExit(pid, 30);
+  static int Stop(Process& recorder) {
+    recorder.Signal(SIGTERM);
+    return recorder.Wait(30);
   }
 
   fs::path dir_;
@@ -61,8 +62,8 @@ std::vector<uint8_t> Payload(uint32_t i) {
 TEST_F(RecordTest, BurstBeyondLcmDefaultQueueIsRecordedWholeAndInOrder) {
   FLEETMAP_REQUIRE_MULTICAST(kUrl);
   const std::string log = dir_ / "burst.lcmlog";
-  const pid_t pid = StartRecorder({"--channel", "TEMPMAP_.*", log});
-  ASSERT_GT(pid, 0);
+  auto recorder = StartRecorder({"--channel", "TEMPMAP_.*", log});
+  ASSERT_TRUE(recorder->started());
   lcm::LCM lcm(kUrl);
   ASSERT_TRUE(lcm.good());
   // 3000 x 200 B fits the 8 MB receive buffer, so the kernel drops nothing; LCM's default
@@ -77,8 +78,8 @@ TEST_F(RecordTest, BurstBeyondLcmDefaultQueueIsRecordedWholeAndInOrder) {
     }
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  ASSERT_EQ(Stop(pid), 0) << ReadAll(dir_ / "err.txt");
-  EXPECT_NE(ReadAll(dir_ / "out.txt").find("3000 messages"), std::string::npos);
+  ASSERT_EQ(Stop(*recorder), 0) << ReadText(dir_ / "err.txt");
+  EXPECT_NE(ReadText(dir_ / "out.txt").find("3000 messages"), std::string::npos);
 
   lcm::LogFile file(log, "r");
   ASSERT_TRUE(file.good());
@@ -98,35 +99,34 @@ TEST_F(RecordTest, BurstBeyondLcmDefaultQueueIsRecordedWholeAndInOrder) {
 TEST_F(RecordTest, FullDiskIsAnErrorNotAShortLog) {
   FLEETMAP_REQUIRE_MULTICAST(kUrl);
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
-  const pid_t pid = StartRecorder({"--force", "/dev/full"});
-  ASSERT_GT(pid, 0);
+  auto recorder = StartRecorder({"--force", "/dev/full"});
+  ASSERT_TRUE(recorder->started());
   lcm::LCM lcm(kUrl);
   const std::vector<uint8_t> p = Payload(7);
   for (int i = 0; i < 100; ++i)
     lcm.publish("TEMPMAP_V1", p.data(), static_cast<unsigned>(p.size()));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  EXPECT_EQ(Stop(pid), 1);
-  EXPECT_NE(ReadAll(dir_ / "err.txt").find("failed"), std::string::npos)
-      << ReadAll(dir_ / "err.txt");
+  EXPECT_EQ(Stop(*recorder), 1);
+  EXPECT_NE(ReadText(dir_ / "err.txt").find("failed"), std::string::npos)
+      << ReadText(dir_ / "err.txt");
 }
 
 TEST_F(RecordTest, KeepsAnExistingLogUnlessForced) {
   const std::string log = dir_ / "kept.lcmlog";
   { std::ofstream(log) << "earlier run"; }
-  const pid_t pid =
-      Spawn({FLEETMAP_RECORD_BINARY, "--lcm-url", kUrl, log}, dir_ / "out.txt", dir_ / "err.txt");
-  EXPECT_EQ(WaitExit(pid, 30), 2);
-  EXPECT_EQ(ReadAll(log), "earlier run");
-  EXPECT_NE(ReadAll(dir_ / "err.txt").find("--force"), std::string::npos);
+  EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY, "--lcm-url", kUrl, log}, dir_ / "out.txt",
+                      dir_ / "err.txt", 30),
+            2);
+  EXPECT_EQ(ReadText(log), "earlier run");
+  EXPECT_NE(ReadText(dir_ / "err.txt").find("--force"), std::string::npos);
 }
 
 TEST_F(RecordTest, HelpAndUsageErrors) {
-  EXPECT_EQ(WaitExit(Spawn({FLEETMAP_RECORD_BINARY, "--help"}, dir_ / "o", dir_ / "e"), 30), 0);
-  EXPECT_NE(ReadAll(dir_ / "o").find("usage: fleetmap-record"), std::string::npos);
-  EXPECT_EQ(WaitExit(Spawn({FLEETMAP_RECORD_BINARY}, dir_ / "o", dir_ / "e"), 30), 2);
-  EXPECT_EQ(
-      WaitExit(Spawn({FLEETMAP_RECORD_BINARY, "--queue", "0", "x"}, dir_ / "o", dir_ / "e"), 30),
-      2);
+  EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY, "--help"}, dir_ / "o1", dir_ / "e1", 30), 0);
+  EXPECT_NE(ReadText(dir_ / "o1").find("usage: fleetmap-record"), std::string::npos);
+  EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY}, dir_ / "o2", dir_ / "e2", 30), 2);
+  EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY, "--queue", "0", "x"}, dir_ / "o3", dir_ / "e3", 30),
+            2);
 }
 
 }  // namespace

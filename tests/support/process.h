@@ -1,10 +1,12 @@
-// For tests that run our programs as processes: start one with its output in files, wait for
-// its exit with a generous deadline (a hung program fails the test instead of hanging ctest).
+// For tests that run our programs as processes: start one with its output appended to files,
+// signal it, wait for its exit with a deadline (a hung program fails the test instead of
+// hanging ctest; one still running when the Process goes away is killed).
 #pragma once
+
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -13,40 +15,74 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
-
 namespace fleetmap::testing {
 
-// Starts args[0] (a path) with stdout and stderr into the files `out` and `err`; -1 on failure.
-inline pid_t Spawn(const std::vector<std::string>& args, const std::string& out,
-                   const std::string& err) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  const int r = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return r == 0 ? pid : -1;
-}
-
-// Exit code, 128 if a signal ended it, or -1 if it did not exit within limit_s (then killed).
-inline int WaitExit(pid_t pid, double limit_s) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
-  while (std::chrono::steady_clock::now() < end) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+class Process {
+ public:
+  // Starts `args[0] args...` (a path) with stdout and stderr appended to the given files.
+  Process(const std::vector<std::string>& args, const std::string& stdout_path,
+          const std::string& stderr_path) {
+    // Everything the child needs is made before fork: between fork and exec only
+    // async-signal-safe calls are allowed (the test may run threads).
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const int out = ::open(stdout_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    const int err = ::open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(out, 1);
+      ::dup2(err, 2);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    ::close(out);
+    ::close(err);
   }
-  kill(pid, SIGKILL);
-  waitpid(pid, nullptr, 0);
-  return -1;
+  Process(const Process&) = delete;
+  Process& operator=(const Process&) = delete;
+  ~Process() {
+    if (running()) {
+      ::kill(pid_, SIGKILL);
+      Wait(10.0);
+    }
+  }
+  bool started() const { return pid_ > 0; }
+  bool running() const { return pid_ > 0 && !exited_; }
+  void Signal(int sig) {
+    if (running()) ::kill(pid_, sig);
+  }
+  // The exit status (or 128 + signal), -1 if still running after timeout_s.
+  int Wait(double timeout_s) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!exited_) {
+      int status = 0;
+      const pid_t r = ::waitpid(pid_, &status, WNOHANG);
+      if (r == pid_) {
+        exited_ = true;
+        code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        break;
+      }
+      if (std::chrono::steady_clock::now() > end) return -1;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return code_;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  bool exited_ = false;
+  int code_ = -1;
+};
+
+// Runs `args` to its end: the exit status, or -1 if it ran longer than timeout_s (then killed).
+inline int RunToExit(const std::vector<std::string>& args, const std::string& stdout_path,
+                     const std::string& stderr_path, double timeout_s) {
+  Process p(args, stdout_path, stderr_path);
+  return p.Wait(timeout_s);
 }
 
-inline std::string ReadAll(const std::string& path) {
+inline std::string ReadText(const std::string& path) {
   std::ifstream in(path);
   std::stringstream s;
   s << in.rdbuf();
