@@ -36,10 +36,9 @@ core::Status AgentPipeline::AddExternalPose(const core::PoseEstimate& pose) {
 }
 
 void AgentPipeline::AddOdometry(const core::OdometrySample& odom) {
-  if (!odom.Validate().ok()) return;  // the localizer counts bad odometry when it sees it
+  localizer_.AddOdometry(odom);  // every increment, and bad samples counted there
+  if (!odom.Validate().ok()) return;
   odom_ = odom;
-  if (!have_odom_) odom_at_last_scan_ = odom.pose_in_odom;
-  have_odom_ = true;
 }
 
 void AgentPipeline::StartMap(double stamp_s, const core::Pose2& anchor) {
@@ -55,8 +54,11 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   step.pose = located.estimate;
   step.localization = located.stats;
   step.divergence = divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps);
-  const core::Pose2 odometry_delta = core::Between(odom_at_last_scan_, odom_.pose_in_odom);
-  odom_at_last_scan_ = odom_.pose_in_odom;
+  // From the localizer's clean odometry: a jump the tracker refused must not tear the
+  // temporary map either.
+  const core::Pose2 odometry_delta =
+      core::Between(clean_odom_at_last_scan_, localizer_.clean_odometry());
+  clean_odom_at_last_scan_ = localizer_.clean_odometry();
   const bool valid = scan.Validate().ok();
   const std::optional<double> previous_s = last_scan_stamp_s_;
   if (valid) last_scan_stamp_s_ = scan.stamp_s;

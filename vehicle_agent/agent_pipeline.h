@@ -51,7 +51,8 @@ class AgentPipeline {
   core::Status InitializeAt(const core::Pose2& pose_in_map, const Eigen::Matrix3d& covariance);
   core::Status AddExternalPose(const core::PoseEstimate& pose_in_map);
 
-  // The latest odometry; the next scan uses the most recent sample.
+  // Every odometry sample, in order: the localizer composes each increment, and the next scan
+  // uses the most recent sample.
   void AddOdometry(const core::OdometrySample& odom);
   AgentStep AddScan(const core::LaserScan& scan);
   // Closes a temporary map being built (at shutdown).
@@ -69,9 +70,8 @@ class AgentPipeline {
   DivergenceDetector divergence_;
   TempMapBuilder builder_;
   core::OdometrySample odom_;
-  core::Pose2 odom_at_last_scan_;
+  core::Pose2 clean_odom_at_last_scan_;      // the localizer's clean odometry at the last scan
   std::optional<double> last_scan_stamp_s_;  // of the last valid scan
-  bool have_odom_ = false;
   int32_t next_sequence_ = 1;
   AgentCounters counters_;
 };

@@ -28,8 +28,12 @@ class OdometryTracker {
   // kClockStep: applied, though its stamp is kClockStepBackS or more before the last one.
   enum class Outcome { kFirst, kApplied, kInvalid, kOutOfOrder, kJump, kClockStep };
 
-  // max_step_m / max_step_rad: the largest believable increment between two samples.
-  OdometryTracker(double max_step_m, double max_step_rad);
+  // The largest believable increment between two samples: max_step_m / max_step_rad, or
+  // what max_speed_mps / max_yaw_rate_radps cover in the time between their stamps (up to
+  // kMaxExplainedGapS), so that samples lost on the way (a CAN or network gap) do not turn
+  // the motion in the gap into a jump. 0 speeds: the fixed steps only.
+  OdometryTracker(double max_step_m, double max_step_rad, double max_speed_mps = 0.0,
+                  double max_yaw_rate_radps = 0.0);
 
   // A jump is dropped but becomes the new reference, so the samples after it apply again.
   Outcome Add(const core::OdometrySample& odom);
@@ -40,7 +44,10 @@ class OdometryTracker {
   const core::Pose2& clean_pose() const { return clean_pose_; }
 
  private:
-  double max_step_m_, max_step_rad_;
+  // A longer gap is not taken as motion: an odometry reset after an outage stays a jump.
+  static constexpr double kMaxExplainedGapS = 5.0;
+
+  double max_step_m_, max_step_rad_, max_speed_mps_, max_yaw_rate_radps_;
   bool has_sample_ = false;
   core::OdometrySample last_;
   core::Pose2 clean_pose_;

@@ -36,7 +36,8 @@ Localizer::Localizer(const LocalizerOptions& options)
     : options_(options),
       field_(options.likelihood_field),
       rng_(options.seed),
-      odometry_(options.max_odometry_step_m, options.max_odometry_step_rad) {
+      odometry_(options.max_odometry_step_m, options.max_odometry_step_rad,
+                options.max_odometry_speed_mps, options.max_odometry_yaw_rate_radps) {
   assert(options.Validate().ok());
   if (options.w_avg_model == WAvgModel::kBeamModel) beam_model_ = MakeBeamModel(options.beam_model);
   moments_.mean = options.initial_pose_in_map;

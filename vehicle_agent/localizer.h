@@ -79,8 +79,13 @@ class Localizer {
   // Used per options.external_pose_mode; refused when invalid or older than the last one.
   core::Status AddExternalPose(const core::PoseEstimate& pose_in_map);
 
-  // One scan with the odometry sample closest to it. Bad input is dropped and counted (see
-  // LocalizerCounters); the returned pose is always finite.
+  // Every odometry sample as it arrives, so that the increments between two scans the caller
+  // had to skip (it fell behind) are composed one by one: taken at once they would be one
+  // step of metres, refused as a jump, and the motion lost. Bad samples are dropped and counted.
+  void AddOdometry(const core::OdometrySample& odom) { TrackOdometry(odom); }
+  // One scan with the odometry sample closest to it (adding a sample AddOdometry already had
+  // is harmless: a zero step). Bad input is dropped and counted (see LocalizerCounters); the
+  // returned pose is always finite.
   LocalizerResult Update(const core::OdometrySample& odom, const core::LaserScan& scan,
                          const core::Pose2& scanner_in_base);
 
@@ -89,6 +94,8 @@ class Localizer {
   const ParticleSet& particles() const { return particles_; }
   const LocalizerCounters& counters() const { return counters_; }
   const LocalizerOptions& options() const { return options_; }
+  // The odometry pose with every refused increment cut out (OdometryTracker).
+  const core::Pose2& clean_odometry() const { return odometry_.clean_pose(); }
 
  private:
   struct ExternalPose {

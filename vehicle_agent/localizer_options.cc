@@ -43,6 +43,9 @@ core::Status LocalizerOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(initial_sigma_theta_rad, "initial_sigma_theta_rad"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(max_odometry_step_m, "max_odometry_step_m"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(max_odometry_step_rad, "max_odometry_step_rad"));
+  FLEETMAP_RETURN_IF_ERROR(CheckNonNegative(max_odometry_speed_mps, "max_odometry_speed_mps"));
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckNonNegative(max_odometry_yaw_rate_radps, "max_odometry_yaw_rate_radps"));
   FLEETMAP_RETURN_IF_ERROR(
       CheckNonNegative(max_odometry_extrapolation_s, "max_odometry_extrapolation_s"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(external_sigma_xy_m, "external_sigma_xy_m"));

@@ -63,6 +63,11 @@ struct LocalizerOptions {
   // reset of the odometry frame, a glitch): it is dropped, not applied. > 0.
   double max_odometry_step_m = 1.0;
   double max_odometry_step_rad = 1.0;
+  // ... unless the time between the two samples explains it at up to this speed and yaw rate
+  // (samples lost on the way; gaps up to 5 s), m/s and rad/s, >= 0 (0: fixed steps only).
+  // Above any forklift's or AGV's 2-3 m/s, far below an odometry reset's step in 20 ms.
+  double max_odometry_speed_mps = 4.0;
+  double max_odometry_yaw_rate_radps = 3.0;
   // Odometry is carried forward (or back) to the scan's stamp with its v and omega, at most
   // this far, s, >= 0: a 50 Hz odometry sample is up to 20 ms off a scan, 1 cm at 0.5 m/s.
   double max_odometry_extrapolation_s = 0.1;

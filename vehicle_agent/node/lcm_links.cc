@@ -49,9 +49,9 @@ void LcmLinks::Subscribe(AgentNode* node, const std::function<double()>& clock) 
         Instance(s.link).subscribe(s.channel, &Route::OnMessage, routes_.back().get());
     // LCM keeps 30 messages per subscription by default and drops the rest silently; a scan
     // burst while a map swap runs must reach our own queue, which skips and counts
-    // (input_queue.h). Odometry above all must not be lost: a gap is a step the tracker
-    // refuses as a jump (max_odometry_step_m), and the motion in it is lost for good. 2000:
-    // 10 s of 200 Hz odometry (a simulator at 4x), at most ~7 MB of queued scans.
+    // (input_queue.h). Odometry above all should not be lost: the tracker takes a gap as
+    // motion only up to max_odometry_speed_mps and 5 s (input_guard.h). 2000: 10 s of
+    // 200 Hz odometry (a simulator at 4x), at most ~7 MB of queued scans.
     if (sub != nullptr) sub->setQueueCapacity(2000);
   }
 }
