@@ -15,6 +15,7 @@
 
 #include "core/map_io.h"
 #include "tests/agent_node/node_test_util.h"
+#include "tests/agent_node/sensor_feed.h"
 #include "tests/agent_node/temp_dir.h"
 #include "tests/support/multicast.h"
 #include "tests/support/process.h"
@@ -90,29 +91,10 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
   ASSERT_FALSE(received.status.empty()) << ReadText(dir / "err.txt");
 
   // 16 simulated seconds at 4x.
-  const double epoch = 1.7e9;
-  std::map<int64_t, core::Pose2> truth;
-  sim::Simulator simulator(&world);
-  const auto wall_start = std::chrono::steady_clock::now();
-  int32_t seq = 0;
-  while (auto e = simulator.Next()) {
-    const double t = sim::EventTime(*e);
-    std::this_thread::sleep_until(wall_start + std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                                   std::chrono::duration<double>(t / 4.0)));
-    if (const auto* o = std::get_if<sim::OdometryEvent>(&*e)) {
-      const core::OdometrySample odom{o->stamp_s + epoch, o->odom_pose, o->v_mps, o->omega_radps};
-      const auto m = lcmtypes::ToMessage(odom, "v1");
-      sensor_lcm.publish("ODOM_v1", &m);
-    } else if (const auto* s = std::get_if<sim::ScanEvent>(&*e)) {
-      core::LaserScan scan = s->scan;
-      scan.stamp_s += epoch;
-      truth[lcmtypes::ToUtime(scan.stamp_s)] = s->true_base_pose;
-      const auto m = lcmtypes::ToMessage(scan, "v1", seq++);
-      sensor_lcm.publish("SCAN_v1", &m);
-    }
+  const std::map<int64_t, core::Pose2> truth = testing::PublishSensors(sensor_lcm, world, 4.0, [&] {
     while (uplink_lcm.handleTimeout(0) > 0) {
     }
-  }
+  });
   for (int i = 0; i < 10; ++i) uplink_lcm.handleTimeout(50);  // the last poses
   agent.Signal(SIGINT);
   EXPECT_EQ(agent.Wait(20.0), 0) << ReadText(dir / "err.txt");
