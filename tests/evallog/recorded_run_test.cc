@@ -58,6 +58,16 @@ class RecordedRunTest : public ::testing::Test {
     e.data = data.data();
     ASSERT_EQ(log.writeEvent(&e), 0);
   }
+  // Version 0 -> 1 as one MAP_DELTA tile.
+  void LogDelta(lcm::LogFile& log, double wall_s, const core::EncodedTile& tile) {
+    core::DeltaTile delta;
+    delta.base_version = 0;
+    delta.index = 0;
+    delta.count = 1;
+    delta.tile = tile.index;
+    delta.frame = tile.frame;
+    Log(log, wall_s, lcmtypes::kMapDeltaChannel, lcmtypes::ToMessage(delta, 0));
+  }
   fleetmap::pose_with_covariance_t Pose(const std::string& id, double t_s, int version) {
     core::PoseEstimate p;
     p.stamp_s = kEpoch + t_s;
@@ -112,13 +122,7 @@ TEST_F(RecordedRunTest, RebuildsMergesVersionsTracesAndLatency) {
     r.cells_added = 1;
     r.new_version = 1;
     Log(log, 10.2, lcmtypes::kMergeReportChannel, r);
-    core::DeltaTile delta;
-    delta.base_version = 0;
-    delta.index = 0;
-    delta.count = 1;
-    delta.tile = tiles[0].index;
-    delta.frame = tiles[0].frame;
-    Log(log, 10.3, lcmtypes::kMapDeltaChannel, lcmtypes::ToMessage(delta, 0));
+    LogDelta(log, 10.3, tiles[0]);
     Log(log, 10.4, lcmtypes::PoseChannel("alpha"), Pose("alpha", 2.5, 1));
     Log(log, 10.5, lcmtypes::PoseChannel("beta"), Pose("beta", 2.5, 0));
     Log(log, 10.9, lcmtypes::PoseChannel("beta"), Pose("beta", 3.0, 1));
@@ -190,6 +194,27 @@ TEST_F(RecordedRunTest, AVehicleThatNeverHoldsTheChangeIsCounted) {
   ASSERT_TRUE(run.ok()) << run.status().ToString();
   EXPECT_TRUE(run->fleet.change_latency_s.empty());
   EXPECT_EQ(run->fleet.changes_not_everywhere, 1);
+}
+
+// A recorded delta that decodes but does not fit the map (a tile beyond its edge) makes the
+// replica drop its map; the run is read on, and the map recorded before stays the last one.
+TEST_F(RecordedRunTest, ADeltaThatDoesNotFitTheMapIsNotRecordedAsAVersion) {
+  const core::GridGeometry& room = world_->static_map().geometry();
+  const core::OccupancyGrid before(core::GridGeometry(0.05, room.width() + 128, room.height()));
+  core::OccupancyGrid after = before;
+  after.SetState({room.width() + 100, 10}, core::CellState::kOccupied);
+  const std::vector<core::EncodedTile> tiles = core::EncodeChangedTiles(before, after);
+  ASSERT_EQ(tiles.size(), 1u);
+  {
+    lcm::LogFile log(path_, "w");
+    LogDelta(log, 5.0, tiles[0]);
+    Log(log, 5.5, lcmtypes::PoseChannel("alpha"), Pose("alpha", 1.5, 0));
+  }
+  auto run = ReadRecordedRun({path_}, *world_, {kEpoch});
+  ASSERT_TRUE(run.ok()) << run.status().ToString();
+  EXPECT_EQ(run->fleet.final_version, 0);
+  EXPECT_EQ(run->run.final_map.geometry(), room);
+  EXPECT_EQ(run->run.final_map.cells(), world_->static_map().cells());
 }
 
 // Two agents' STATUS over 20 s of wall clock and 40 simulated seconds (the simulator at 2x):

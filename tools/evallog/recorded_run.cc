@@ -204,7 +204,9 @@ class Reader {
       applied = replica_.AddDeltaTile(*tile);
     }
     if (!applied.ok()) return (void)++record_.fleet.map_messages_refused;
-    if (replica_.version() != before) record_.run.RecordVersion(replica_.map());
+    // A delta that does not fit drops the map (version -1): nothing to record then.
+    if (replica_.has_map() && replica_.version() != before)
+      record_.run.RecordVersion(replica_.map());
   }
 
   void OnDivergence(const Event& e) {
