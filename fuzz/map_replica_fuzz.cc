@@ -10,9 +10,13 @@
 namespace fleetmap::fuzz {
 namespace {
 
-core::OccupancyGrid SeedMap() {
-  core::OccupancyGrid grid(core::GridGeometry(0.05, 100, 70, core::Pose2(1, 1, 0)));
-  grid.SetState({10, 10}, core::CellState::kOccupied);
+// Made once: filling its 7000 cells took a quarter of every execution; a copy is a memcpy.
+const core::OccupancyGrid& SeedMap() {
+  static const core::OccupancyGrid grid = [] {
+    core::OccupancyGrid g(core::GridGeometry(0.05, 100, 70, core::Pose2(1, 1, 0)));
+    g.SetState({10, 10}, core::CellState::kOccupied);
+    return g;
+  }();
   return grid;
 }
 

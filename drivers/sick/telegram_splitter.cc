@@ -36,11 +36,13 @@ void TelegramSplitter::Feed(const uint8_t* data, size_t size) {
 void TelegramSplitter::Reset() {
   buffer_.clear();
   start_ = 0;
+  scanned_ = 0;
 }
 
 void TelegramSplitter::Skip(size_t n) {
   stats_.garbage_bytes += n;
   start_ += n;
+  scanned_ = 0;
 }
 
 void TelegramSplitter::Compact() {
@@ -73,8 +75,9 @@ std::optional<std::string> TelegramSplitter::NextColaA() {
       continue;
     }
     // The telegram ends at ETX; a second STX before it means the first one was cut off.
-    size_t end = 1;
+    size_t end = std::max<size_t>(1, scanned_);
     while (end < available && p[end] != kEtx && p[end] != kStx) ++end;
+    scanned_ = end;
     if (end == available) {
       if (available > options_.max_payload_bytes + 2) {
         ++stats_.oversized;
@@ -89,6 +92,7 @@ std::optional<std::string> TelegramSplitter::NextColaA() {
     }
     std::string payload(reinterpret_cast<const char*>(p + 1), end - 1);
     start_ += end + 1;
+    scanned_ = 0;
     return payload;
   }
   return std::nullopt;

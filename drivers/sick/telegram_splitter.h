@@ -59,6 +59,9 @@ class TelegramSplitter {
   const TelegramSplitterOptions options_;
   std::string buffer_;
   size_t start_ = 0;  // first unread byte of buffer_
+  // CoLa-A: the unfinished telegram at start_ holds neither ETX nor STX before this offset
+  // (so that each Feed scans only the new bytes, not the whole telegram again).
+  size_t scanned_ = 0;
   TelegramSplitterStats stats_;
 };
 
