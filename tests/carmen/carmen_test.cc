@@ -74,6 +74,19 @@ TEST(RelationsTest, PerfectTrajectoryScoresZeroAndAnOffsetShows) {
   EXPECT_NEAR(ScoreRelations(relations, t).trans_mean_m, 0.05, 1e-9);
 }
 
+TEST(RelationsTest, TheNearestTimeStampIsUsedNotTheFirstWithinTolerance) {
+  // intel's scans come in bursts: two scans 0.9 ms apart are a scan period of motion apart.
+  const std::vector<Relation> relations = {{10.0, 11.0, core::Pose2(1, 0, 0)}};
+  const std::vector<TimedPose> t = {{9.9991, core::Pose2(0.5, 0, 0)},
+                                    {10.0, core::Pose2()},
+                                    {11.0, core::Pose2(1, 0, 0)},
+                                    {11.0009, core::Pose2(1.5, 0, 0)}};
+  const RelationErrors e = ScoreRelations(relations, t);
+  EXPECT_EQ(e.used, 1);
+  EXPECT_NEAR(e.trans_mean_m, 0.0, 1e-12);
+  EXPECT_EQ(ScoreRelations({{10.002, 11.0, core::Pose2()}}, t).missing, 1);  // none within 1 ms
+}
+
 // The real intel log (Kuemmerle et al.'s benchmark): over its first 3000 scans the scan
 // matcher must beat the log's own odometry within 60 s, in translation and rotation.
 TEST(RealLogTest, ScanMatcherBeatsOdometryOnIntel) {

@@ -3,15 +3,24 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace fleetmap::carmen {
 namespace {
 
+// The pose whose time stamp is nearest `t`, if within 1 ms. Nearest, not the first within
+// 1 ms: intel's scans come in bursts, two of them 1.0-1.3 ms apart, and the earlier one is a
+// scan period of motion away from the one the relation names.
 const core::Pose2* Find(const std::vector<TimedPose>& trajectory, double t) {
-  auto it = std::lower_bound(trajectory.begin(), trajectory.end(), t - 1e-3,
+  constexpr double kTolerance_s = 1e-3;
+  auto it = std::lower_bound(trajectory.begin(), trajectory.end(), t,
                              [](const TimedPose& p, double v) { return p.stamp_s < v; });
-  if (it == trajectory.end() || std::abs(it->stamp_s - t) > 1e-3) return nullptr;
+  if (it != trajectory.begin() &&
+      (it == trajectory.end() || t - std::prev(it)->stamp_s < it->stamp_s - t)) {
+    --it;
+  }
+  if (it == trajectory.end() || std::abs(it->stamp_s - t) > kTolerance_s) return nullptr;
   return &it->pose;
 }
 

@@ -38,7 +38,7 @@ struct RelationErrors {
 };
 
 // Scores the relations spanning at most `max_span_s` (|t2 - t1|). Trajectory poses are
-// looked up by time stamp, within 1 ms; `trajectory` must be sorted by time.
+// looked up by time stamp: the nearest one, within 1 ms; `trajectory` must be sorted by time.
 RelationErrors ScoreRelations(const std::vector<Relation>& relations,
                               const std::vector<TimedPose>& trajectory,
                               double max_span_s = std::numeric_limits<double>::infinity());
