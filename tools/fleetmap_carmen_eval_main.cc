@@ -43,6 +43,9 @@ options:
   --max-range M        returns farther away are not used          [25]
   --prior-xy M, --prior-theta RAD, --sigma-map P
                        odometry prior (base) and map noise       [0.005, 0.005, 0.25]
+  --heading-search-base RAD, --heading-search F
+                       heading searched within +-(RAD + F x odometry rotation) before
+                       Gauss-Newton; 0 and 0: no search            [0.035, 1.0]
   --update-distance M, --update-angle RAD
                        travel between map insertions              [0.1, 0.1]
   -h, --help           this text
@@ -92,6 +95,10 @@ bool Parse(int argc, char** argv, Args& a) {
         a.mapper.matcher.prior_sigma_theta_rad = std::stod(v);
       else if (arg == "--sigma-map")
         a.mapper.matcher.sigma_map = std::stod(v);
+      else if (arg == "--heading-search")
+        a.mapper.matcher.heading_search_per_rad = std::stod(v);
+      else if (arg == "--heading-search-base")
+        a.mapper.matcher.heading_search_base_rad = std::stod(v);
       else if (arg == "--update-distance")
         a.mapper.update_min_distance_m = std::stod(v);
       else if (arg == "--update-angle")

@@ -41,6 +41,44 @@ std::vector<Eigen::Vector2d> Thin(const std::vector<Eigen::Vector2d>& points, in
   return out;
 }
 
+// Sum of the map values at the points placed by `pose`: the correlation a coarse search ranks.
+double Score(const MapInterpolator& map, const std::vector<Eigen::Vector2d>& points,
+             const core::Pose2& pose) {
+  const double c = std::cos(pose.theta_rad), s = std::sin(pose.theta_rad);
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points)
+    sum += map.At({pose.x_m + c * p.x() - s * p.y(), pose.y_m + s * p.x() + c * p.y()}).value;
+  return sum;
+}
+
+// Gauss-Newton's basin on the coarsest level is a cell or two wide: a heading off by a few
+// degrees (stale odometry in a fast turn) moves far end points farther than that, and the
+// descent can settle in a wrong, rotated minimum. So the heading is first searched on the
+// coarsest level over the odometry's rotational uncertainty, in steps that move the farthest
+// point by half a coarse cell; the prediction wins ties.
+core::Pose2 SearchHeading(const MultiResolutionMap& map, const std::vector<Eigen::Vector2d>& points,
+                          const core::Pose2& prediction, double window_rad) {
+  const core::OccupancyGrid& coarsest = map.level(map.levels() - 1);
+  double reach_m = 0.0;
+  for (const Eigen::Vector2d& p : points) reach_m = std::max(reach_m, p.norm());
+  if (window_rad <= 0 || reach_m <= 0) return prediction;
+  const double step_rad = 0.5 * coarsest.geometry().resolution_m() / reach_m;
+  const int steps = std::min(64, static_cast<int>(std::ceil(window_rad / step_rad)));
+  const MapInterpolator interpolator(&coarsest);
+  const std::vector<Eigen::Vector2d> thinned = Thin(points, 1 << (map.levels() - 1));
+  core::Pose2 best = prediction;
+  double best_score = Score(interpolator, thinned, prediction);
+  for (int i = -steps; i <= steps; ++i) {
+    if (i == 0) continue;
+    const core::Pose2 candidate(
+        prediction.x_m, prediction.y_m,
+        core::NormalizeAngle(prediction.theta_rad + i * window_rad / steps));
+    const double score = Score(interpolator, thinned, candidate);
+    if (score > best_score * (1.0 + 1e-3)) best = candidate, best_score = score;
+  }
+  return best;
+}
+
 Eigen::Matrix3d PriorInformation(const ScanMatcherOptions& o, const core::Pose2& motion) {
   if (o.prior_sigma_xy_m <= 0 || o.prior_sigma_theta_rad <= 0) return Eigen::Matrix3d::Zero();
   const double xy =
@@ -55,7 +93,8 @@ Eigen::Matrix3d PriorInformation(const ScanMatcherOptions& o, const core::Pose2&
 core::Status ScanMatcherOptions::Validate() const {
   if (!(coarse_iterations >= 0 && fine_iterations >= 1 && prior_sigma_xy_m >= 0 &&
         prior_sigma_theta_rad >= 0 && prior_sigma_xy_per_m >= 0 && prior_sigma_theta_per_rad >= 0 &&
-        sigma_map > 0 && max_step_rad > 0 && max_correction_m > 0 && max_correction_rad > 0)) {
+        sigma_map > 0 && heading_search_base_rad >= 0 && heading_search_per_rad >= 0 &&
+        max_step_rad > 0 && max_correction_m > 0 && max_correction_rad > 0)) {
     return core::InvalidArgument("scan matcher options out of range");
   }
   return core::OkStatus();
@@ -70,6 +109,9 @@ MatchResult MatchScan(const MultiResolutionMap& map, const std::vector<Eigen::Ve
   if (points.empty()) return result;
   const Eigen::Matrix3d prior = PriorInformation(options, odometry_delta);
   const double weight = 1.0 / (options.sigma_map * options.sigma_map);
+  const double search_rad = options.heading_search_base_rad +
+                            options.heading_search_per_rad * std::abs(odometry_delta.theta_rad);
+  result.pose = SearchHeading(map, points, prediction, search_rad);
   for (int level = map.levels() - 1; level >= 0; --level) {
     const MapInterpolator interpolator(&map.level(level));
     // Points closer together than a level's cells add nothing there: thin them out.

@@ -23,6 +23,13 @@ struct ScanMatcherOptions {
   double prior_sigma_theta_per_rad = 0.05;  // per radian turned
   // Noise of one end point's map value (probability units); weighs scan against prior.
   double sigma_map = 0.25;
+  // Before Gauss-Newton, the heading is searched on the coarsest level within +-(base +
+  // fraction * |odometry rotation since the previous scan|): odometry that lags a fast turn
+  // (aces' ODOM lines come at the scan rate, so a scan's odometry is up to one period old)
+  // can leave the descent in a rotated minimum, and each such slip bends the map. 0 and 0
+  // switch the search off. Measured on the SLAM benchmark logs (docs/localization.md).
+  double heading_search_base_rad = 0.035;  // 2 degrees
+  double heading_search_per_rad = 1.0;
   double max_step_rad = 0.2;  // largest rotation of one iteration, for stability
   // A match farther than this from the prediction is taken for a false minimum (a vehicle
   // cannot slip that far between two scans): the prediction is kept instead.

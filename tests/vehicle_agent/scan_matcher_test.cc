@@ -96,9 +96,36 @@ TEST_F(ScanMatcherTest, TheOdometryPriorHoldsAFeaturelessCorridor) {
   // Without the prior nothing holds the pose along the corridor.
   ScanMatcherOptions no_prior;
   no_prior.prior_sigma_xy_m = 0;
+  // The descent alone: a heading search may start it from a slightly turned heading, from
+  // which it slides less far.
+  no_prior.heading_search_base_rad = no_prior.heading_search_per_rad = 0;
   const MatchResult slid =
       MatchScan(map, Points(scan), prediction, core::Pose2(0.02, 0, 0), no_prior);
   EXPECT_TRUE(slid.rejected || std::abs(slid.pose.x_m - 0.3) > 0.05) << slid.pose.ToString();
+}
+
+TEST_F(ScanMatcherTest, TheHeadingSearchCatchesAFastTurnThatOdometryLags) {
+  const MultiResolutionMap map =
+      MapFrom({core::Pose2(-1, 0, 0), core::Pose2(0.5, 0.5, 0.3)}, world_);
+  // The vehicle turned 0.45 rad since the last scan; its odometry, a period old, says 0.3.
+  const core::Pose2 truth(0.2, -0.3, 0.45);
+  const core::Pose2 prediction(0.2, -0.3, 0.3), odometry(0, 0, 0.3);
+  const std::vector<Eigen::Vector2d> points = Points(ScanFrom(truth, world_));
+  const MatchResult m = MatchScan(map, points, prediction, odometry, {});
+  EXPECT_FALSE(m.rejected);
+  EXPECT_NEAR(m.pose.theta_rad, truth.theta_rad, 0.002);
+  EXPECT_NEAR(m.pose.x_m, truth.x_m, 0.02);
+  EXPECT_NEAR(m.pose.y_m, truth.y_m, 0.02);
+  // This room is kind to Gauss-Newton, whose coarse levels bridge 0.15 rad here too. With
+  // one step on the finest level only, the search alone brings the heading into reach.
+  ScanMatcherOptions one_step;
+  one_step.coarse_iterations = 0;
+  one_step.fine_iterations = 1;
+  EXPECT_NEAR(MatchScan(map, points, prediction, odometry, one_step).pose.theta_rad,
+              truth.theta_rad, 0.02);
+  one_step.heading_search_base_rad = one_step.heading_search_per_rad = 0;
+  const MatchResult stuck = MatchScan(map, points, prediction, odometry, one_step);
+  EXPECT_GT(std::abs(stuck.pose.theta_rad - truth.theta_rad), 0.1) << stuck.pose.ToString();
 }
 
 TEST_F(ScanMatcherTest, AFarFetchedMatchFallsBackToThePrediction) {
