@@ -110,7 +110,7 @@ core::Result<MergeReport> Aggregator::Commit(const core::TempMap& map, const Ass
   const core::Pose2& correction = assessment.alignment.correction;
   const PlacedEvidence evidence = PlaceEvidence(map, correction, store_.static_map().geometry());
   const MergeInputs inputs{&addable_, &store_.semi_static(), &store_.candidates(),
-                           &store_.candidate_mask()};
+                           &store_.candidate_mask(), &store_.changed_at_s()};
   const MergePlan plan = PlanMerge(evidence, {map.start_s, map.end_s}, inputs, options_.merge);
   MergeCommit commit{store_.version() + 1,
                      {map.vehicle_id, map.sequence, map.start_s, map.end_s, now_s},

@@ -1,6 +1,7 @@
 #include "aggregator/current_map_store.h"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 
 namespace fleetmap::aggregator {
@@ -19,6 +20,7 @@ CurrentMapStore::CurrentMapStore(core::OccupancyGrid static_map, const StoreOpti
       semi_static_(static_cast<size_t>(static_map_.geometry().num_cells()), 0),
       static_occupied_(semi_static_.size(), 0),
       candidate_mask_(semi_static_.size(), 0),
+      changed_at_s_(semi_static_.size(), -std::numeric_limits<double>::infinity()),
       layout_(static_map_.geometry(), options.tiles.tile_size_cells),
       tile_versions_(static_cast<size_t>(layout_.num_tiles()), 0) {
   const core::TriStateClassifier classify(options.thresholds);
@@ -72,10 +74,12 @@ void CurrentMapStore::ApplyChange(const CellChange& c, const TimeSpan& span) {
       current_.mutable_cells()[i] = current_.CanonicalLogOdds(core::CellState::kOccupied);
       candidates_.erase(c.cell);
       candidate_mask_[i] = 0;
+      changed_at_s_[i] = span.end_s;
       break;
     case CellChangeKind::kRemoved:
       semi_static_[i] = 0;
       current_.mutable_cells()[i] = static_map_.cells()[i];
+      changed_at_s_[i] = span.end_s;
       break;
     case CellChangeKind::kCandidate:
       candidates_[c.cell] = span;

@@ -43,6 +43,9 @@ class CurrentMapStore {
   // (last).
   const std::map<int64_t, TimeSpan>& candidates() const { return candidates_; }
   const std::vector<uint8_t>& candidate_mask() const { return candidate_mask_; }
+  // Per cell: the end of the temporary map whose evidence last added or removed it, s
+  // (-infinity if none did). Rebuilt by replaying the commits, like everything else here.
+  const std::vector<double>& changed_at_s() const { return changed_at_s_; }
   const ProvenanceLog& provenance() const { return provenance_; }
   const core::TileLayout& layout() const { return layout_; }
   uint64_t TileVersion(const core::TileIndex& tile) const;
@@ -75,6 +78,7 @@ class CurrentMapStore {
   std::vector<uint8_t> static_occupied_;
   std::map<int64_t, TimeSpan> candidates_;
   std::vector<uint8_t> candidate_mask_;  // per cell, 1 for a key of candidates_
+  std::vector<double> changed_at_s_;
   core::TileLayout layout_;
   std::vector<uint64_t> tile_versions_;
   std::deque<MapDelta> deltas_;  // the latest retained_deltas, oldest first

@@ -135,12 +135,26 @@ class Planner {
     }
   }
 
+  // Whether this map's evidence is older than what last decided the cell (see PlanMerge).
+  bool Outdated(int x, int y, CellChangeKind kind) const {
+    switch (kind) {
+      case CellChangeKind::kAdded:
+      case CellChangeKind::kRemoved:
+        return in_.changed_at_s && span_.end_s < (*in_.changed_at_s)[Global(x, y)];
+      case CellChangeKind::kCandidateDropped:
+        return span_.end_s < in_.candidates->at(static_cast<int64_t>(Global(x, y))).end_s;
+      case CellChangeKind::kCandidate:
+        return false;
+    }
+    return false;
+  }
+
   MergePlan Collect(const std::vector<std::optional<CellChangeKind>>& decided) const {
     MergePlan plan;
     for (int y = w_.y0; y < w_.y0 + w_.height; ++y) {
       for (int x = w_.x0; x < w_.x0 + w_.width; ++x) {
         const auto kind = decided[Local(x, y)];
-        if (!kind) continue;
+        if (!kind || Outdated(x, y, *kind)) continue;
         plan.changes.push_back({static_cast<int64_t>(Global(x, y)), *kind});
         switch (*kind) {
           case CellChangeKind::kAdded:

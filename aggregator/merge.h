@@ -89,6 +89,9 @@ struct MergeInputs {
   const std::vector<uint8_t>* semi_static = nullptr;        // per cell, 1: a semi-static obstacle
   const std::map<int64_t, TimeSpan>* candidates = nullptr;  // cell -> the map that saw it last
   const std::vector<uint8_t>* candidate_mask = nullptr;     // per cell, 1: a candidate
+  // Per cell, the end of the map whose evidence last added or removed it, s. Optional (null:
+  // every map counts as newer).
+  const std::vector<double>* changed_at_s = nullptr;
 };
 
 struct MergePlan {
@@ -100,7 +103,11 @@ struct MergePlan {
   int dropped = 0;     // candidates seen free
 };
 
-// `span`: when the temporary map whose evidence this is was built.
+// `span`: when the temporary map whose evidence this is was built. Maps arrive out of time
+// order (a lossy link resends tiles for seconds; a vehicle back in range sends what it kept),
+// so evidence older than a cell's last change does not undo it: a map that ended before the
+// map that added a pallet saw the place free, and must not remove the pallet (nor re-add one
+// taken away since). Nor does it drop a candidate a later map saw.
 MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span, const MergeInputs& inputs,
                     const MergeOptions& options);
 

@@ -132,8 +132,9 @@ echo "fleet: aggregator and ${#vehicles[@]} agents up; simulating at ${speed}x (
 [ -n "$duration" ] || duration=$(sed -n 's/^duration_s: *//p' "$scenario")
 
 # Let the last temporary maps and changes travel, then stop the agents (each writes the map
-# it holds), then the aggregator (it writes the current map), then the loggers.
-sleep 3
+# it holds), then the aggregator (it writes the current map), then the loggers. On a lossy
+# link the last tiles take a few resend rounds (one a second while tiles get through).
+if [ "$loss" = 0 ]; then sleep 3; else sleep 8; fi
 for p in "${agents[@]}"; do kill -INT "$p" 2>/dev/null || true; done
 for p in "${agents[@]}"; do wait "$p" || echo "fleet_run.sh: an agent exited with $?" >&2; done
 agents=()

@@ -82,6 +82,7 @@ std::vector<core::TempMapTile> TempMapOutbox::Due(double now_s) {
       (e.sent_once ? counters_.tiles_resent : counters_.tiles_sent)++;
     }
     e.sent_once = true;
+    e.last_send_s = now_s;
     e.next_send_s = now_s + e.backoff_s;
     e.backoff_s = std::min(options_.max_resend_s, 2 * e.backoff_s);
   }
@@ -98,7 +99,16 @@ void TempMapOutbox::OnAck(int32_t sequence, const std::vector<int32_t>& received
     ++counters_.maps_done;
     return;
   }
-  for (int32_t i : received) it->second.confirmed.insert(i);
+  Entry& e = it->second;
+  const size_t before = e.confirmed.size();
+  for (int32_t i : received) e.confirmed.insert(i);
+  if (e.confirmed.size() > before) {
+    // Tiles got through: the aggregator is there and the link only loses some. The backoff is
+    // for an aggregator that is away; on a lossy link it would wait 2, 4, 8 s between rounds
+    // for the last few tiles (at 30% loss a map's merge took 7 s instead of 2).
+    e.backoff_s = options_.first_resend_s;
+    e.next_send_s = std::min(e.next_send_s, e.last_send_s + options_.first_resend_s);
+  }
 }
 
 }  // namespace fleetmap::vehicle_agent

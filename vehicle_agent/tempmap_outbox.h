@@ -1,6 +1,8 @@
 // The vehicle's outbox for temporary maps: every closed map is kept (in memory and, with a
 // state folder, on disk) until the aggregator acknowledges it, and its tiles that the
-// aggregator has not confirmed are sent again with exponential backoff. On restart the
+// aggregator has not confirmed are sent again with exponential backoff, back to the first
+// interval whenever an acknowledgement confirms new tiles (a lossy link, not an absent
+// aggregator). On restart the
 // outbox reloads what it still had to send. Free of LCM: the agent process sends what Due()
 // returns and passes acknowledgements to OnAck().
 #pragma once
@@ -17,7 +19,7 @@ namespace fleetmap::vehicle_agent {
 struct OutboxOptions {
   std::string state_dir;        // where pending maps are kept on disk; empty: memory only
   double first_resend_s = 1.0;  // wait for an acknowledgement this long before resending
-  double max_resend_s = 16.0;   // backoff doubles up to this
+  double max_resend_s = 16.0;   // backoff doubles up to this while no new tile is confirmed
   int max_pending_maps = 64;    // the oldest is dropped (and counted) beyond this
   int tile_size_cells = 64;
   core::Status Validate() const;
@@ -53,7 +55,8 @@ class TempMapOutbox {
     std::vector<core::TempMapTile> tiles;
     std::set<int32_t> confirmed;
     double next_send_s = 0.0;
-    double backoff_s = 0.0;
+    double last_send_s = 0.0;
+    double backoff_s = 0.0;  // the wait after the next send
     bool sent_once = false;
   };
   std::string PathOf(int32_t sequence) const;

@@ -38,7 +38,7 @@ class MergeTest : public ::testing::Test {
   MergePlan Plan(const PlacedEvidence& e, TimeSpan span) {
     addable_ = AddableCells(store_.static_map(), options_);
     const MergeInputs in{&addable_, &store_.semi_static(), &store_.candidates(),
-                         &store_.candidate_mask()};
+                         &store_.candidate_mask(), &store_.changed_at_s()};
     return PlanMerge(e, span, in, options_);
   }
   void Commit(const MergePlan& plan, TimeSpan span) {
@@ -107,6 +107,34 @@ TEST_F(MergeTest, ACandidateSeenFreeIsDropped) {
   Commit(gone, {20, 30});
   EXPECT_TRUE(store_.candidates().empty());
   EXPECT_EQ(Semi(), 0);
+}
+
+// Maps merge in the order they complete, not the order they were made (a lossy link, a
+// vehicle back in range): older evidence does not undo a newer change.
+TEST_F(MergeTest, AMapOlderThanACellsLastChangeLeavesIt) {
+  PlacedEvidence hit = Evidence(), free = Evidence();
+  Set(hit, 8, 8, 10, 10, kHit);
+  Set(free, 4, 4, 14, 14, kFree);
+  Commit(Plan(hit, {10, 13}), {10, 13});  // a pallet put down at 9 s, seen twice
+  Commit(Plan(hit, {16, 19}), {16, 19});
+  ASSERT_EQ(Semi(), 9);
+  EXPECT_EQ(Plan(free, {0, 3}).removed, 0);      // seen free before it was put down
+  EXPECT_EQ(Plan(free, {14, 17}).removed, 0);    // ended before the map that added it
+  const MergePlan taken = Plan(free, {30, 33});  // taken away later
+  EXPECT_EQ(taken.removed, 9);
+  Commit(taken, {30, 33});
+  ASSERT_EQ(Semi(), 0);
+  // Sightings from before the removal do not bring it back (at first sight, to show it).
+  options_.confirmations = 1;
+  EXPECT_EQ(Plan(hit, {22, 25}).added, 0);
+  EXPECT_EQ(Plan(hit, {34, 37}).added, 9);
+  options_.confirmations = 2;
+  // A candidate seen at 40 s is not dropped by a map of 35 s that saw the place free.
+  Set(hit, 8, 8, 10, 10, kHit);
+  Commit(Plan(hit, {38, 41}), {38, 41});
+  ASSERT_EQ(store_.candidates().size(), 9u);
+  EXPECT_EQ(Plan(free, {32, 35}).dropped, 0);
+  EXPECT_EQ(Plan(free, {42, 45}).dropped, 9);
 }
 
 TEST_F(MergeTest, StaticCellsNeverChangeAndTheirSurroundingsAreNotAdded) {

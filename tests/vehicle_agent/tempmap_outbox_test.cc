@@ -28,15 +28,41 @@ TEST(TempMapOutboxTest, SendsResendsWithBackoffAndStopsWhenMerged) {
   EXPECT_TRUE(outbox.Due(0.5).empty());  // waiting for the acknowledgement
   outbox.OnAck(1, {0, 1, 2, 3}, AckOutcome::kPending);
   EXPECT_EQ(outbox.Due(1.0).size(), 2u);  // only what was not confirmed
-  EXPECT_TRUE(outbox.Due(2.5).empty());   // backoff doubled: next at 3.0
-  EXPECT_EQ(outbox.Due(3.0).size(), 2u);
-  EXPECT_TRUE(outbox.Due(6.9).empty());  // capped at 4 s: next at 7.0
-  EXPECT_EQ(outbox.Due(7.0).size(), 2u);
+  EXPECT_TRUE(outbox.Due(1.9).empty());
+  EXPECT_EQ(outbox.Due(2.0).size(), 2u);  // no answer since: the backoff doubles
+  EXPECT_TRUE(outbox.Due(3.9).empty());
+  EXPECT_EQ(outbox.Due(4.0).size(), 2u);
+  EXPECT_TRUE(outbox.Due(7.9).empty());  // capped at 4 s: next at 8.0
+  EXPECT_EQ(outbox.Due(8.0).size(), 2u);
   outbox.OnAck(1, {}, AckOutcome::kMerged);
   EXPECT_EQ(outbox.pending(), 0u);
   EXPECT_TRUE(outbox.Due(100.0).empty());
   EXPECT_EQ(outbox.counters().tiles_sent, 6);
-  EXPECT_EQ(outbox.counters().tiles_resent, 6);
+  EXPECT_EQ(outbox.counters().tiles_resent, 8);
+}
+
+TEST(TempMapOutboxTest, KeepsResendingEverySecondWhileTilesGetThrough) {
+  OutboxOptions options;
+  options.first_resend_s = 1.0;
+  options.max_resend_s = 16.0;
+  TempMapOutbox outbox(options);
+  ASSERT_TRUE(outbox.Add(Map(1), 0.0).ok());
+  ASSERT_EQ(outbox.Due(0.0).size(), 6u);
+  EXPECT_TRUE(outbox.Due(0.9).empty());
+  ASSERT_EQ(outbox.Due(1.0).size(), 6u);             // nothing heard: backoff 2 s from here
+  outbox.OnAck(1, {0, 1, 2}, AckOutcome::kPending);  // a lossy link, not an absent aggregator
+  EXPECT_TRUE(outbox.Due(1.9).empty());
+  ASSERT_EQ(outbox.Due(2.0).size(), 3u);  // 1 s after the last send, not 2
+  outbox.OnAck(1, {0, 1, 2, 3}, AckOutcome::kPending);
+  ASSERT_EQ(outbox.Due(3.0).size(), 2u);
+  // An acknowledgement that confirms nothing new is no progress: the backoff goes on.
+  outbox.OnAck(1, {0, 1, 2, 3}, AckOutcome::kPending);
+  EXPECT_TRUE(outbox.Due(3.9).empty());
+  EXPECT_EQ(outbox.Due(4.0).size(), 2u);
+  EXPECT_TRUE(outbox.Due(5.9).empty());
+  EXPECT_EQ(outbox.Due(6.0).size(), 2u);
+  EXPECT_TRUE(outbox.Due(9.9).empty());
+  EXPECT_EQ(outbox.Due(10.0).size(), 2u);
 }
 
 TEST(TempMapOutboxTest, SurvivesARestartThroughItsStateFolder) {
