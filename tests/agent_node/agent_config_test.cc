@@ -82,6 +82,7 @@ TEST(AgentConfigTest, MistakesAreErrorsThatNameTheKeyAndLine) {
   for (const char* yaml : {"vehicle_id: v1\noutbox: {first_resend_s: 0}\n",
                            "vehicle_id: v1\nrates: {max_queued_scans: 0}\n",
                            "vehicle_id: v1\nrates: {loop_wait_s: 2}\n",
+                           "vehicle_id: v1\nrates: {shutdown_drain_s: -1}\n",
                            "vehicle_id: v1\ninputs: {scan_source: sick, sick: {port: 0}}\n",
                            "vehicle_id: v1\ninitial_pose: external\n", "vehicle_id: 'v.1'\n"}) {
     auto parsed = ParseAgentConfig(yaml, "a.yaml");

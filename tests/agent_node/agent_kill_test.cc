@@ -146,6 +146,18 @@ class AgentKillTest : public ::testing::Test {
                                 }).size());
   }
 
+  std::vector<std::string> AggregatorArgs() const {
+    return {FLEETMAP_AGGREGATOR_BINARY,
+            "--map",
+            dir_ / "room.yaml",
+            "--state-dir",
+            dir_ / "aggregator_state",
+            "--uplink-url",
+            uplink_,
+            "--downlink-url",
+            downlink_};
+  }
+
   std::string state_dir() const { return dir_ / "agent_state"; }
   std::string Logs() const {
     return "agent:\n" + ReadText(dir_ / "agent_err.txt") + "aggregator:\n" +
@@ -190,16 +202,7 @@ TEST_F(AgentKillTest, KilledWithUnacknowledgedMapsItSendsThemAgainAndNoneIsMerge
   // 2. The aggregator starts, then the agent again on the same state folder but deaf to the
   // downlink: it reloads the maps and sends them, the aggregator merges each (MERGED, heard
   // by the test only), and the agent, which never hears it, is killed with all still pending.
-  const std::vector<std::string> aggregator_args = {FLEETMAP_AGGREGATOR_BINARY,
-                                                    "--map",
-                                                    dir_ / "room.yaml",
-                                                    "--state-dir",
-                                                    dir_ / "aggregator_state",
-                                                    "--uplink-url",
-                                                    uplink_,
-                                                    "--downlink-url",
-                                                    downlink_};
-  Process aggregator(aggregator_args, dir_ / "aggregator_out.txt", dir_ / "aggregator_err.txt");
+  Process aggregator(AggregatorArgs(), dir_ / "aggregator_out.txt", dir_ / "aggregator_err.txt");
   ASSERT_TRUE(Listen(20.0, [&] { return !aggregator_status_.messages.empty(); })) << Logs();
   size_t tiles_from = tiles_.messages.size(), acks_from = acks_.messages.size();
   agent = StartAgent(deaf_downlink_);
@@ -271,6 +274,49 @@ TEST_F(AgentKillTest, KilledWithUnacknowledgedMapsItSendsThemAgainAndNoneIsMerge
       static_cast<unsigned long long>(restored->store().version()));
   EXPECT_EQ(merged, std::multiset<int32_t>(merged_acks.begin(), merged_acks.end()));
   EXPECT_EQ(restored->store().version(), merged_acks.size());
+}
+
+// The number after `key` on the last line of `path` that has it (-1 if none).
+int64_t NumberAfter(const std::string& path, const std::string& key) {
+  const std::string text = ReadText(path);
+  const size_t at = text.rfind(key);
+  return at == std::string::npos ? -1 : std::atoll(text.c_str() + at + key.size());
+}
+
+// Stopped (SIGINT) while it builds a temporary map, the agent closes the map, sends it, and
+// before it exits hears it merged and takes the version it made: nothing is left to resend
+// after a restart, and the map it writes at exit is the fleet's.
+TEST_F(AgentKillTest, StoppedWhileBuildingItAwaitsTheMergeOfItsLastMap) {
+  Process aggregator(AggregatorArgs(), dir_ / "aggregator_out.txt", dir_ / "aggregator_err.txt");
+  ASSERT_TRUE(Listen(20.0, [&] { return !aggregator_status_.messages.empty(); })) << Logs();
+  auto agent = StartAgent(downlink_);
+  ASSERT_TRUE(FirstAgentStatus()) << Logs();
+  const int64_t scans = Drive();
+  ASSERT_TRUE(Listen(30.0, [&] {
+    const fleetmap::status_t& s = agent_status_.messages.back();
+    return CounterOf(s, "scans") + CounterOf(s, "scans_skipped") +
+               CounterOf(s, "scans_waiting_for_map") ==
+           scans;
+  })) << Logs();
+  // The pallet came into view at 3 s and the agent maps for 20 s after: at 16 s it still is.
+  ASSERT_EQ(agent_status_.messages.back().state, "building")
+      << "no map being built at the stop: the test proves nothing\n"
+      << Logs();
+  const size_t acks_from = acks_.messages.size(), tiles_from = tiles_.messages.size();
+  agent->Signal(SIGINT);
+  ASSERT_EQ(agent->Wait(20.0), 0) << Logs();
+  EXPECT_TRUE(PendingFiles(state_dir()).empty()) << Logs();
+  // The map closed at the stop: the tiles sent after the signal.
+  ASSERT_TRUE(Listen(5.0, [&] { return tiles_.messages.size() > tiles_from; })) << Logs();
+  const int32_t last_sequence = *TileSequences(tiles_, tiles_from).rbegin();
+  EXPECT_TRUE(Listen(5.0, [&] { return FinalAcks(acks_, acks_from).count(last_sequence) > 0; }))
+      << "the map closed at the stop was not answered\n"
+      << Logs();
+  aggregator.Signal(SIGTERM);
+  ASSERT_EQ(aggregator.Wait(20.0), 0) << Logs();
+  const int64_t fleet_version = NumberAfter(dir_ / "aggregator_out.txt", "aggregator: version ");
+  EXPECT_GE(fleet_version, 1) << Logs();
+  EXPECT_EQ(NumberAfter(dir_ / "agent_out.txt", " map_version "), fleet_version) << Logs();
 }
 
 }  // namespace

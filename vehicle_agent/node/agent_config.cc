@@ -236,13 +236,15 @@ core::Status ReadOutbox(const YamlReader& r, const YAML::Node& n, OutboxOptions&
 
 core::Status ReadRates(const YamlReader& r, const YAML::Node& n, AgentConfig& c) {
   if (!n) return core::OkStatus();
-  FLEETMAP_RETURN_IF_ERROR(CheckKeys(r, n, "rates",
-                                     {"status_period_s", "map_request_period_s", "max_queued_scans",
-                                      "loop_wait_s", "uplink_tiles_per_s", "uplink_burst_tiles"}));
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckKeys(r, n, "rates",
+                {"status_period_s", "map_request_period_s", "max_queued_scans", "loop_wait_s",
+                 "shutdown_drain_s", "uplink_tiles_per_s", "uplink_burst_tiles"}));
   READ_NUMBER(n, "status_period_s", "rates.", c.node.status_period_s);
   READ_NUMBER(n, "map_request_period_s", "rates.", c.node.map.request_period_s);
   READ_AS(int, n, "max_queued_scans", "rates.", c.node.queue.max_queued_scans);
   READ_NUMBER(n, "loop_wait_s", "rates.", c.loop_wait_s);
+  READ_NUMBER(n, "shutdown_drain_s", "rates.", c.shutdown_drain_s);
   READ_NUMBER(n, "uplink_tiles_per_s", "rates.", c.node.uplink_pacer.rate_per_s);
   READ_NUMBER(n, "uplink_burst_tiles", "rates.", c.node.uplink_pacer.burst);
   return core::OkStatus();
@@ -309,6 +311,8 @@ core::Status AgentConfig::Validate() const {
   if (odom_source == OdomSource::kCan) FLEETMAP_RETURN_IF_ERROR(can.Validate());
   if (!(loop_wait_s > 0.0 && loop_wait_s <= 0.1))
     return core::InvalidArgument("rates.loop_wait_s must be in (0, 0.1]");
+  if (!(shutdown_drain_s >= 0.0 && shutdown_drain_s <= 60.0))
+    return core::InvalidArgument("rates.shutdown_drain_s must be in [0, 60]");
   if (!(duration_s >= 0.0 && std::isfinite(duration_s)))
     return core::InvalidArgument("--duration must be >= 0");
   for (const std::string* url : {&urls.sensor, &urls.uplink, &urls.downlink})

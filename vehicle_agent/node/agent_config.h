@@ -27,9 +27,10 @@ struct AgentConfig {
   OdomSource odom_source = OdomSource::kLcm;
   SickInputOptions sick;
   CanInputOptions can;
-  double loop_wait_s = 0.05;  // longest wait of the loop for input, s, (0, 0.1]
-  double duration_s = 0.0;    // stop after this long, s; 0: until SIGINT/SIGTERM
-  bool quiet = false;         // only warnings, errors and the final line
+  double loop_wait_s = 0.05;      // longest wait of the loop for input, s, (0, 0.1]
+  double shutdown_drain_s = 2.0;  // LoopOptions::shutdown_drain_s, s, [0, 60]
+  double duration_s = 0.0;        // stop after this long, s; 0: until SIGINT/SIGTERM
+  bool quiet = false;             // only warnings, errors and the final line
   // Whether the file or a flag said where the first pose comes from. If not: the first
   // external pose when inputs.external_pose is on, else global localization.
   bool initial_pose_explicit = false;

@@ -211,7 +211,8 @@ flags (override the configuration file):
   --quiet               only warnings, errors and the final line
   --version, -h/--help
 SIGINT/SIGTERM: a temporary map being built is closed into the outbox (and the state
-folder), the final map is written and the last line is
+folder) and sent, its acknowledgement awaited up to rates.shutdown_drain_s (2 s), then the
+final map is written and the last line is
   agent <ID>: scans N map_version V tempmaps T
 Exit status: 0 stopped cleanly, 1 runtime failure (LCM, files), 2 bad command line or config.
 LCM multicast needs a route: run scripts/setup_multicast.sh (root) on a single host.

@@ -13,6 +13,9 @@ constexpr double kCanWaitS = 0.01;
 constexpr double kScannerWaitS = 0.02;
 // How often the process's CPU time and memory are read for STATUS (a /proc read each time).
 constexpr double kUsagePeriodS = 1.0;
+// Once the outbox is empty at shutdown, the delta of the last merge follows its
+// acknowledgement within milliseconds on a LAN; this much more is taken in.
+constexpr double kDrainSettleS = 0.3;
 
 NamedCounters InputCounters(const LoopSources& sources) {
   NamedCounters out;
@@ -63,7 +66,28 @@ core::Status RunAgentLoop(AgentNode& node, const LoopSources& sources, const Loo
     node.Tick(now_s);
   }
   node.Shutdown(clock());
+  if (failure.ok()) failure = DrainAtShutdown(node, *sources.links, options, clock);
   return failure;
+}
+
+core::Status DrainAtShutdown(AgentNode& node, LcmLinks& links, const LoopOptions& options,
+                             const std::function<double()>& clock) {
+  const double end_s = clock() + options.shutdown_drain_s;
+  double empty_since_s = -1.0;
+  for (double now_s = clock(); now_s < end_s; now_s = clock()) {
+    const core::Result<int> handled = links.Handle(std::min(options.wait_s, end_s - now_s));
+    if (!handled.ok()) return handled.status();
+    now_s = clock();
+    node.Drain(now_s);
+    if (node.outbox().pending() > 0) {
+      empty_since_s = -1.0;
+    } else if (empty_since_s < 0.0) {
+      empty_since_s = now_s;
+    } else if (now_s - empty_since_s >= kDrainSettleS) {
+      break;
+    }
+  }
+  return core::OkStatus();
 }
 
 }  // namespace fleetmap::vehicle_agent::node

@@ -374,6 +374,11 @@ void AgentNode::Shutdown(double now_s) {
   SendStatus(now_s);
 }
 
+void AgentNode::Drain(double now_s) {
+  if (map_dirty_) ApplyMap();
+  SendTiles(now_s, /*all=*/true);
+}
+
 // ---- output ---------------------------------------------------------------------------------
 
 int64_t AgentNode::Utime(double now_s) const {

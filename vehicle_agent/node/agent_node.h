@@ -53,6 +53,8 @@ class AgentNode {
   // At exit: a temporary map being built is closed into the outbox (and its state folder),
   // its tiles are sent once, and a last STATUS goes out.
   void Shutdown(double now_s);
+  // After Shutdown: resends what is due and takes a new map version in; sensor input waits.
+  void Drain(double now_s);
 
   // "waiting_for_map", "waiting_for_pose", "building" (a temporary map) or "running".
   std::string state() const;

@@ -118,6 +118,7 @@ int main(int argc, char** argv) {
   LoopOptions loop;
   loop.wait_s = config.loop_wait_s;
   loop.duration_s = config.duration_s;
+  loop.shutdown_drain_s = config.shutdown_drain_s;
   const core::Status ran = RunAgentLoop(**node, sources, loop, &g_stop, SteadyNowS);
   int code = 0;
   if (!ran.ok()) code = Fail(ran.ToString(), 1);
