@@ -146,6 +146,16 @@ class AgentKillTest : public ::testing::Test {
                                 }).size());
   }
 
+  // Waits until the agent's heartbeat counts every one of `scans` as handled.
+  bool EveryScanHandled(int64_t scans) {
+    return Listen(30.0, [&] {
+      const fleetmap::status_t& s = agent_status_.messages.back();
+      return CounterOf(s, "scans") + CounterOf(s, "scans_skipped") +
+                 CounterOf(s, "scans_waiting_for_map") ==
+             scans;
+    });
+  }
+
   std::vector<std::string> AggregatorArgs() const {
     return {FLEETMAP_AGGREGATOR_BINARY,
             "--map",
@@ -182,12 +192,7 @@ TEST_F(AgentKillTest, KilledWithUnacknowledgedMapsItSendsThemAgainAndNoneIsMerge
   auto agent = StartAgent(downlink_);
   ASSERT_TRUE(FirstAgentStatus()) << Logs();
   const int64_t scans = Drive();
-  ASSERT_TRUE(Listen(30.0, [&] {
-    const fleetmap::status_t& s = agent_status_.messages.back();
-    return CounterOf(s, "scans") + CounterOf(s, "scans_skipped") +
-               CounterOf(s, "scans_waiting_for_map") ==
-           scans;
-  })) << Logs();
+  ASSERT_TRUE(EveryScanHandled(scans)) << Logs();
   const int64_t closed = CounterOf(agent_status_.messages.back(), "tempmaps_closed");
   ASSERT_GE(closed, 1) << "no temporary map: the test proves nothing\n" << Logs();
   ASSERT_TRUE(Listen(10.0, [&] { return !tiles_.messages.empty(); })) << Logs();
@@ -292,12 +297,7 @@ TEST_F(AgentKillTest, StoppedWhileBuildingItAwaitsTheMergeOfItsLastMap) {
   auto agent = StartAgent(downlink_);
   ASSERT_TRUE(FirstAgentStatus()) << Logs();
   const int64_t scans = Drive();
-  ASSERT_TRUE(Listen(30.0, [&] {
-    const fleetmap::status_t& s = agent_status_.messages.back();
-    return CounterOf(s, "scans") + CounterOf(s, "scans_skipped") +
-               CounterOf(s, "scans_waiting_for_map") ==
-           scans;
-  })) << Logs();
+  ASSERT_TRUE(EveryScanHandled(scans)) << Logs();
   // The pallet came into view at 3 s and the agent maps for 20 s after: at 16 s it still is.
   ASSERT_EQ(agent_status_.messages.back().state, "building")
       << "no map being built at the stop: the test proves nothing\n"
