@@ -84,6 +84,12 @@ std::set<int32_t> PendingFiles(const std::string& state_dir) {
 
 class AgentKillTest : public ::testing::Test {
  protected:
+  // 50 for the kill test, 60 for the stop test: groups 239.255.77.51-54 or .61-64, ports to match.
+  static int TestBase() {
+    const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    return name.rfind("Stopped", 0) == 0 ? 60 : 50;
+  }
+
   void SetUp() override {
     FLEETMAP_REQUIRE_MULTICAST(sensor_);
     ASSERT_TRUE(core::SaveMapServerMap(world_.static_map(), dir_ / "room.yaml").ok());
@@ -176,8 +182,13 @@ class AgentKillTest : public ::testing::Test {
 
   const sim::World world_ = testing::RoomWorld(testing::kPallet);
   testing::TempDir dir_;
-  const std::string sensor_ = Url(51, 7951), uplink_ = Url(52, 7952), downlink_ = Url(53, 7953);
-  const std::string deaf_downlink_ = Url(54, 7954);  // nobody sends there
+  // Groups and ports of each test of its own: ctest runs them at the same time, and two agents
+  // "v1" on one group would answer each other's maps.
+  const int base_ = TestBase();
+  const std::string sensor_ = Url(base_ + 1, 7900 + base_ + 1);
+  const std::string uplink_ = Url(base_ + 2, 7900 + base_ + 2);
+  const std::string downlink_ = Url(base_ + 3, 7900 + base_ + 3);
+  const std::string deaf_downlink_ = Url(base_ + 4, 7900 + base_ + 4);  // nobody sends there
   lcm::LCM sensor_lcm_{sensor_}, uplink_lcm_{uplink_}, downlink_lcm_{downlink_};
   // What the test hears: the agent's tiles and heartbeats on the uplink, the aggregator's
   // acknowledgements and heartbeats on the downlink.
