@@ -41,7 +41,10 @@ MapInterpolator::MapInterpolator(const core::OccupancyGrid* grid) : grid_(grid) 
 double MapInterpolator::Probability(int x, int y) const {
   const core::GridGeometry& g = grid_->geometry();
   if (x < 0 || y < 0 || x >= g.width() || y >= g.height()) return 0.0;
-  const float l = grid_->cells()[static_cast<size_t>(y) * g.width() + x];
+  return FromLogOdds(grid_->cells()[static_cast<size_t>(y) * g.width() + x]);
+}
+
+double MapInterpolator::FromLogOdds(float l) const {
   if (l == 0.0f) return 0.0;  // never observed
   const int i = static_cast<int>((l - table_min_) * table_scale_ + 0.5f);
   return (*table_)[static_cast<size_t>(std::clamp(i, 0, static_cast<int>(table_->size()) - 1))];
@@ -55,8 +58,16 @@ InterpolatedValue MapInterpolator::At(const Eigen::Vector2d& p) const {
   const double v = (p.y() - g.origin().y_m) / res - 0.5;
   const int x0 = static_cast<int>(std::floor(u)), y0 = static_cast<int>(std::floor(v));
   const double fx = u - x0, fy = v - y0;
-  const double p00 = Probability(x0, y0), p10 = Probability(x0 + 1, y0);
-  const double p01 = Probability(x0, y0 + 1), p11 = Probability(x0 + 1, y0 + 1);
+  double p00, p10, p01, p11;
+  if (x0 >= 0 && y0 >= 0 && x0 + 1 < g.width() && y0 + 1 < g.height()) {
+    // The matcher's common case, all four cells inside: one index, no per-cell bounds checks.
+    const float* row = grid_->cells().data() + static_cast<size_t>(y0) * g.width() + x0;
+    p00 = FromLogOdds(row[0]), p10 = FromLogOdds(row[1]);
+    p01 = FromLogOdds(row[g.width()]), p11 = FromLogOdds(row[g.width() + 1]);
+  } else {
+    p00 = Probability(x0, y0), p10 = Probability(x0 + 1, y0);
+    p01 = Probability(x0, y0 + 1), p11 = Probability(x0 + 1, y0 + 1);
+  }
   InterpolatedValue out;
   out.value = (1 - fy) * ((1 - fx) * p00 + fx * p10) + fy * ((1 - fx) * p01 + fx * p11);
   out.gradient_per_m = Eigen::Vector2d((1 - fy) * (p10 - p00) + fy * (p11 - p01),

@@ -22,7 +22,8 @@ class MapInterpolator {
   InterpolatedValue At(const Eigen::Vector2d& p) const;
 
  private:
-  double Probability(int x, int y) const;
+  double Probability(int x, int y) const;  // 0 outside the grid
+  double FromLogOdds(float log_odds) const;
 
   const core::OccupancyGrid* grid_;
   // log-odds -> probability, sampled over the grid's clamping range (exp per lookup would be
