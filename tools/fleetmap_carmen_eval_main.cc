@@ -48,6 +48,9 @@ options:
                        Gauss-Newton; 0 and 0: no search            [0.035, 1.0]
   --update-distance M, --update-angle RAD
                        travel between map insertions              [0.1, 0.1]
+  --rest-distance M, --rest-angle RAD
+                       odometry steps this small are standing still: the scan is not
+                       matched; 0 and 0: match every scan         [0.0001, 0.0001]
   -h, --help           this text
 )";
 
@@ -103,6 +106,10 @@ bool Parse(int argc, char** argv, Args& a) {
         a.mapper.update_min_distance_m = std::stod(v);
       else if (arg == "--update-angle")
         a.mapper.update_min_angle_rad = std::stod(v);
+      else if (arg == "--rest-distance")
+        a.mapper.rest_max_translation_m = std::stod(v);
+      else if (arg == "--rest-angle")
+        a.mapper.rest_max_rotation_rad = std::stod(v);
       else
         return false;
     }

@@ -8,9 +8,9 @@ core::Status LocalMapperOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(map.Validate());
   FLEETMAP_RETURN_IF_ERROR(matcher.Validate());
   if (!(update_min_distance_m >= 0 && update_min_angle_rad >= 0 && min_range_m >= 0 &&
-        max_range_m > min_range_m)) {
+        max_range_m > min_range_m && rest_max_translation_m >= 0 && rest_max_rotation_rad >= 0)) {
     return core::InvalidArgument(
-        "local mapper: update thresholds >= 0 and min_range_m < max_range_m");
+        "local mapper: update and rest thresholds >= 0 and min_range_m < max_range_m");
   }
   return core::OkStatus();
 }
@@ -49,7 +49,14 @@ std::vector<Eigen::Vector2d> LocalMapper::EndPoints(const core::LaserScan& scan,
 ScanUpdate LocalMapper::AddScan(const core::LaserScan& scan, const core::Pose2& odometry_delta,
                                 const core::Pose2& scanner_in_base) {
   ScanUpdate update;
-  if (!first_) {
+  const bool at_rest =
+      std::hypot(odometry_delta.x_m, odometry_delta.y_m) <= options_.rest_max_translation_m &&
+      std::abs(odometry_delta.theta_rad) <= options_.rest_max_rotation_rad &&
+      (options_.rest_max_translation_m > 0 || options_.rest_max_rotation_rad > 0);
+  if (!first_ && at_rest) {
+    pose_ = pose_ * odometry_delta;
+    update.at_rest = true;
+  } else if (!first_) {
     const core::Pose2 prediction = pose_ * odometry_delta;
     update.match = MatchScan(map_, EndPoints(scan, scanner_in_base), prediction, odometry_delta,
                              options_.matcher);

@@ -16,6 +16,12 @@ struct LocalMapperOptions {
   double update_min_angle_rad = 0.1;   // ... or this much turning
   double min_range_m = 0.1;            // end points closer than this are not matched
   double max_range_m = 25.0;           // ... nor farther than this
+  // Odometry steps at most this small mean the vehicle stands still: its scan is not matched
+  // (the pose follows the odometry). Matching again what was just matched from the same spot
+  // only re-fits sensor noise, and a parked vehicle should cost nothing; MRPT's icp-slam
+  // likewise matches only after 0.2 m or 5 deg. 0 and 0: match every scan.
+  double rest_max_translation_m = 1e-4;
+  double rest_max_rotation_rad = 1e-4;
   core::Status Validate() const;
 };
 
@@ -23,7 +29,8 @@ struct ScanUpdate {
   core::Pose2 pose;  // base pose in the mapper's frame after matching
   MatchResult match;
   bool inserted = false;  // the scan went into the map
-  bool matched = false;   // false for the first scan (nothing to match against yet)
+  bool matched = false;   // false for the first scan (nothing to match against yet) ...
+  bool at_rest = false;   // ... and for a vehicle standing still
 };
 
 class LocalMapper {

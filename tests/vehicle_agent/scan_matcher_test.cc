@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/ray_caster.h"
+#include "vehicle_agent/local_mapper.h"
 
 namespace fleetmap::vehicle_agent {
 namespace {
@@ -145,6 +146,35 @@ TEST_F(ScanMatcherTest, NoPointsLeavesThePrediction) {
   const MatchResult m = MatchScan(map, {}, core::Pose2(1, 2, 3), {}, {});
   EXPECT_EQ(m.pose.x_m, 1.0);
   EXPECT_EQ(m.points, 0);
+}
+
+// A vehicle standing still (no odometry motion) is not matched again: its pose stays where the
+// last match put it, even when its scan hints otherwise. With the rest thresholds at 0 every
+// scan is matched, and the same scan moves the pose.
+TEST_F(ScanMatcherTest, ALocalMapperDoesNotMatchTheScansOfAVehicleStandingStill) {
+  const core::Pose2 start(0, 0, 0), ahead(0.03, 0, 0);
+  LocalMapperOptions options;
+  options.map.size_m = 12;
+  LocalMapper still(options, start);
+  still.AddScan(ScanFrom(start, world_), core::Pose2(), core::Pose2());
+  const ScanUpdate rest = still.AddScan(ScanFrom(ahead, world_), core::Pose2(), core::Pose2());
+  EXPECT_TRUE(rest.at_rest);
+  EXPECT_FALSE(rest.matched);
+  EXPECT_EQ(rest.pose.x_m, 0.0);
+  // Any motion above the thresholds is matched again.
+  const ScanUpdate moving =
+      still.AddScan(ScanFrom(core::Pose2(0.05, 0, 0), world_), core::Pose2(0.02, 0, 0), {});
+  EXPECT_TRUE(moving.matched);
+  EXPECT_FALSE(moving.at_rest);
+  EXPECT_NEAR(moving.pose.x_m, 0.05, 0.01);
+
+  options.rest_max_translation_m = options.rest_max_rotation_rad = 0;
+  LocalMapper every(options, start);
+  every.AddScan(ScanFrom(start, world_), core::Pose2(), core::Pose2());
+  const ScanUpdate matched = every.AddScan(ScanFrom(ahead, world_), core::Pose2(), core::Pose2());
+  EXPECT_TRUE(matched.matched);
+  EXPECT_FALSE(matched.at_rest);
+  EXPECT_GT(matched.pose.x_m, 0.015);
 }
 
 }  // namespace
