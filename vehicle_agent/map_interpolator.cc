@@ -50,29 +50,41 @@ double MapInterpolator::FromLogOdds(float l) const {
   return (*table_)[static_cast<size_t>(std::clamp(i, 0, static_cast<int>(table_->size()) - 1))];
 }
 
-InterpolatedValue MapInterpolator::At(const Eigen::Vector2d& p) const {
+MapInterpolator::Corners MapInterpolator::CornersAt(const Eigen::Vector2d& p) const {
   const core::GridGeometry& g = grid_->geometry();
   const double res = g.resolution_m();
   // Continuous coordinates of cell centres: cell (i, j) has its centre at (i, j).
   const double u = (p.x() - g.origin().x_m) / res - 0.5;
   const double v = (p.y() - g.origin().y_m) / res - 0.5;
   const int x0 = static_cast<int>(std::floor(u)), y0 = static_cast<int>(std::floor(v));
-  const double fx = u - x0, fy = v - y0;
-  double p00, p10, p01, p11;
+  Corners c;
+  c.fx = u - x0, c.fy = v - y0;
   if (x0 >= 0 && y0 >= 0 && x0 + 1 < g.width() && y0 + 1 < g.height()) {
     // The matcher's common case, all four cells inside: one index, no per-cell bounds checks.
     const float* row = grid_->cells().data() + static_cast<size_t>(y0) * g.width() + x0;
-    p00 = FromLogOdds(row[0]), p10 = FromLogOdds(row[1]);
-    p01 = FromLogOdds(row[g.width()]), p11 = FromLogOdds(row[g.width() + 1]);
+    c.p00 = FromLogOdds(row[0]), c.p10 = FromLogOdds(row[1]);
+    c.p01 = FromLogOdds(row[g.width()]), c.p11 = FromLogOdds(row[g.width() + 1]);
   } else {
-    p00 = Probability(x0, y0), p10 = Probability(x0 + 1, y0);
-    p01 = Probability(x0, y0 + 1), p11 = Probability(x0 + 1, y0 + 1);
+    c.p00 = Probability(x0, y0), c.p10 = Probability(x0 + 1, y0);
+    c.p01 = Probability(x0, y0 + 1), c.p11 = Probability(x0 + 1, y0 + 1);
   }
+  return c;
+}
+
+double MapInterpolator::Value(const Eigen::Vector2d& p) const {
+  const Corners c = CornersAt(p);
+  return (1 - c.fy) * ((1 - c.fx) * c.p00 + c.fx * c.p10) +
+         c.fy * ((1 - c.fx) * c.p01 + c.fx * c.p11);
+}
+
+InterpolatedValue MapInterpolator::At(const Eigen::Vector2d& p) const {
+  const Corners c = CornersAt(p);
+  const double fx = c.fx, fy = c.fy;
   InterpolatedValue out;
-  out.value = (1 - fy) * ((1 - fx) * p00 + fx * p10) + fy * ((1 - fx) * p01 + fx * p11);
-  out.gradient_per_m = Eigen::Vector2d((1 - fy) * (p10 - p00) + fy * (p11 - p01),
-                                       (1 - fx) * (p01 - p00) + fx * (p11 - p10)) /
-                       res;
+  out.value = (1 - fy) * ((1 - fx) * c.p00 + fx * c.p10) + fy * ((1 - fx) * c.p01 + fx * c.p11);
+  out.gradient_per_m = Eigen::Vector2d((1 - fy) * (c.p10 - c.p00) + fy * (c.p11 - c.p01),
+                                       (1 - fx) * (c.p01 - c.p00) + fx * (c.p11 - c.p10)) /
+                       grid_->geometry().resolution_m();
   return out;
 }
 

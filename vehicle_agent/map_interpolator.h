@@ -20,10 +20,17 @@ class MapInterpolator {
   explicit MapInterpolator(const core::OccupancyGrid* grid);  // `grid` outlives this
   // `p` in the frame the grid's geometry is expressed in (origin yaw must be 0).
   InterpolatedValue At(const Eigen::Vector2d& p) const;
+  // At(p).value alone (the same number), for searches that need no gradient.
+  double Value(const Eigen::Vector2d& p) const;
 
  private:
   double Probability(int x, int y) const;  // 0 outside the grid
   double FromLogOdds(float log_odds) const;
+  struct Corners {
+    double fx, fy;              // position between the cell centres, [0, 1)
+    double p00, p10, p01, p11;  // probabilities of the four cells around it
+  };
+  Corners CornersAt(const Eigen::Vector2d& p) const;
 
   const core::OccupancyGrid* grid_;
   // log-odds -> probability, sampled over the grid's clamping range (exp per lookup would be

@@ -16,11 +16,13 @@ struct NormalEquations {
 };
 
 // Accumulates J^T J and J^T r of residuals r_i = 1 - M(S_i(pose)).
+// Every `stride`-th point only: points closer together than a level's cells add nothing there.
 NormalEquations Accumulate(const MapInterpolator& map, const std::vector<Eigen::Vector2d>& points,
-                           const core::Pose2& pose, double weight) {
+                           size_t stride, const core::Pose2& pose, double weight) {
   NormalEquations ne;
   const double c = std::cos(pose.theta_rad), s = std::sin(pose.theta_rad);
-  for (const Eigen::Vector2d& p : points) {
+  for (size_t i = 0; i < points.size(); i += stride) {
+    const Eigen::Vector2d& p = points[i];
     const Eigen::Vector2d world(pose.x_m + c * p.x() - s * p.y(), pose.y_m + s * p.x() + c * p.y());
     const InterpolatedValue m = map.At(world);
     const double d_theta = m.gradient_per_m.x() * (-s * p.x() - c * p.y()) +
@@ -33,21 +35,15 @@ NormalEquations Accumulate(const MapInterpolator& map, const std::vector<Eigen::
   return ne;
 }
 
-std::vector<Eigen::Vector2d> Thin(const std::vector<Eigen::Vector2d>& points, int stride) {
-  if (stride <= 1) return points;
-  std::vector<Eigen::Vector2d> out;
-  out.reserve(points.size() / stride + 1);
-  for (size_t i = 0; i < points.size(); i += static_cast<size_t>(stride)) out.push_back(points[i]);
-  return out;
-}
-
 // Sum of the map values at the points placed by `pose`: the correlation a coarse search ranks.
-double Score(const MapInterpolator& map, const std::vector<Eigen::Vector2d>& points,
+double Score(const MapInterpolator& map, const std::vector<Eigen::Vector2d>& points, size_t stride,
              const core::Pose2& pose) {
   const double c = std::cos(pose.theta_rad), s = std::sin(pose.theta_rad);
   double sum = 0.0;
-  for (const Eigen::Vector2d& p : points)
-    sum += map.At({pose.x_m + c * p.x() - s * p.y(), pose.y_m + s * p.x() + c * p.y()}).value;
+  for (size_t i = 0; i < points.size(); i += stride) {
+    const Eigen::Vector2d& p = points[i];
+    sum += map.Value({pose.x_m + c * p.x() - s * p.y(), pose.y_m + s * p.x() + c * p.y()});
+  }
   return sum;
 }
 
@@ -65,15 +61,15 @@ core::Pose2 SearchHeading(const MultiResolutionMap& map, const std::vector<Eigen
   const double step_rad = 0.5 * coarsest.geometry().resolution_m() / reach_m;
   const int steps = std::min(64, static_cast<int>(std::ceil(window_rad / step_rad)));
   const MapInterpolator interpolator(&coarsest);
-  const std::vector<Eigen::Vector2d> thinned = Thin(points, 1 << (map.levels() - 1));
+  const size_t stride = size_t{1} << (map.levels() - 1);
   core::Pose2 best = prediction;
-  double best_score = Score(interpolator, thinned, prediction);
+  double best_score = Score(interpolator, points, stride, prediction);
   for (int i = -steps; i <= steps; ++i) {
     if (i == 0) continue;
     const core::Pose2 candidate(
         prediction.x_m, prediction.y_m,
         core::NormalizeAngle(prediction.theta_rad + i * window_rad / steps));
-    const double score = Score(interpolator, thinned, candidate);
+    const double score = Score(interpolator, points, stride, candidate);
     if (score > best_score * (1.0 + 1e-3)) best = candidate, best_score = score;
   }
   return best;
@@ -114,11 +110,10 @@ MatchResult MatchScan(const MultiResolutionMap& map, const std::vector<Eigen::Ve
   result.pose = SearchHeading(map, points, prediction, search_rad);
   for (int level = map.levels() - 1; level >= 0; --level) {
     const MapInterpolator interpolator(&map.level(level));
-    // Points closer together than a level's cells add nothing there: thin them out.
-    const std::vector<Eigen::Vector2d> thinned = Thin(points, 1 << level);
     const int iterations = level == 0 ? options.fine_iterations : options.coarse_iterations;
     for (int it = 0; it < iterations; ++it) {
-      NormalEquations ne = Accumulate(interpolator, thinned, result.pose, weight * (1 << level));
+      NormalEquations ne =
+          Accumulate(interpolator, points, size_t{1} << level, result.pose, weight * (1 << level));
       const core::Pose2 off =
           core::Pose2(prediction.x_m - result.pose.x_m, prediction.y_m - result.pose.y_m,
                       core::NormalizeAngle(prediction.theta_rad - result.pose.theta_rad));
@@ -140,9 +135,13 @@ MatchResult MatchScan(const MultiResolutionMap& map, const std::vector<Eigen::Ve
     result.pose = prediction;
     result.rejected = true;
   }
-  const MapInterpolator finest(&map.finest());
-  result.mean_map_value = Accumulate(finest, points, result.pose, 1.0).value_sum / points.size();
   return result;
+}
+
+double MeanMapValue(const MultiResolutionMap& map, const std::vector<Eigen::Vector2d>& points,
+                    const core::Pose2& pose) {
+  if (points.empty()) return 0.0;
+  return Score(MapInterpolator(&map.finest()), points, 1, pose) / points.size();
 }
 
 }  // namespace fleetmap::vehicle_agent

@@ -41,7 +41,6 @@ struct ScanMatcherOptions {
 struct MatchResult {
   core::Pose2 pose;                                       // matched base pose in the map's frame
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  // of the finest level, with prior
-  double mean_map_value = 0.0;  // mean occupancy probability at the end points (fit quality)
   int points = 0;
   bool rejected = false;  // the match strayed too far: `pose` is the prediction
 };
@@ -53,5 +52,11 @@ MatchResult MatchScan(const MultiResolutionMap& map,
                       const std::vector<Eigen::Vector2d>& points_in_base,
                       const core::Pose2& prediction, const core::Pose2& odometry_delta,
                       const ScanMatcherOptions& options);
+
+// Mean occupancy probability of the finest level at the points placed by `pose`: how well a
+// match fits (1: every point on a certain wall). Diagnostics only, so MatchScan does not pay
+// for it.
+double MeanMapValue(const MultiResolutionMap& map,
+                    const std::vector<Eigen::Vector2d>& points_in_base, const core::Pose2& pose);
 
 }  // namespace fleetmap::vehicle_agent

@@ -68,13 +68,14 @@ TEST_F(ScanMatcherTest, RecoversAKnownOffset) {
   const core::Pose2 truth(0.2, -0.3, 0.1);
   ScanMatcherOptions options;
   options.prior_sigma_xy_m = 0;  // no prior: the scan alone must find it
-  const MatchResult m =
-      MatchScan(map, Points(ScanFrom(truth, world_)), core::Pose2(0.32, -0.22, 0.14), {}, options);
+  const std::vector<Eigen::Vector2d> points = Points(ScanFrom(truth, world_));
+  const MatchResult m = MatchScan(map, points, core::Pose2(0.32, -0.22, 0.14), {}, options);
   EXPECT_FALSE(m.rejected);
   EXPECT_NEAR(m.pose.x_m, truth.x_m, 0.02);
   EXPECT_NEAR(m.pose.y_m, truth.y_m, 0.02);
   EXPECT_NEAR(m.pose.theta_rad, truth.theta_rad, 0.005);
-  EXPECT_GT(m.mean_map_value, 0.6);
+  EXPECT_GT(MeanMapValue(map, points, m.pose), 0.6);
+  EXPECT_LT(MeanMapValue(map, points, core::Pose2(0.32, -0.22, 0.14)), 0.3);
 }
 
 TEST_F(ScanMatcherTest, TheOdometryPriorHoldsAFeaturelessCorridor) {
