@@ -52,19 +52,26 @@ class PgmScanner {
 
   // Skips separators, then reads one number that must end at a separator or the end.
   Result<int64_t> ReadNumber(const std::string& what) {
+    return ReadNumberNamed([&what] { return what; });
+  }
+
+  // `what()` names the number in an error, and is called only for one: a P2 raster's pixel
+  // names would otherwise be built for every value read.
+  template <typename NameFn>
+  Result<int64_t> ReadNumberNamed(const NameFn& what) {
     SkipSpaceAndComments();
-    if (AtEnd()) return DataLoss("PGM ends before the " + what);
+    if (AtEnd()) return DataLoss("PGM ends before the " + what());
     if (!IsDigit(Peek())) {
-      return InvalidArgument("PGM " + what + " is not a number: found " + Printable(Peek()));
+      return InvalidArgument("PGM " + what() + " is not a number: found " + Printable(Peek()));
     }
     int64_t value = 0;
     while (!AtEnd() && IsDigit(Peek())) {
       value = value * 10 + (Peek() - '0');
-      if (value > kMaxHeaderNumber) return OutOfRange("PGM " + what + " is absurdly large");
+      if (value > kMaxHeaderNumber) return OutOfRange("PGM " + what() + " is absurdly large");
       ++pos_;
     }
     if (!AtEnd() && !IsPgmSpace(Peek()) && Peek() != '#') {
-      return InvalidArgument("PGM " + what + " is followed by " + Printable(Peek()));
+      return InvalidArgument("PGM " + what() + " is followed by " + Printable(Peek()));
     }
     return value;
   }
@@ -196,7 +203,7 @@ Status ReadAsciiRaster(PgmScanner& scanner, const PgmHeader& h, GrayImage& image
       return DataLoss("PGM pixel data truncated: expected " + std::to_string(n) +
                       " values, found " + std::to_string(i));
     }
-    Result<int64_t> v = scanner.ReadNumber(PixelName(i, h.width));
+    Result<int64_t> v = scanner.ReadNumberNamed([&] { return PixelName(i, h.width); });
     if (!v.ok()) return v.status();
     if (*v > h.maxval) {
       return InvalidArgument("PGM " + PixelName(i, h.width) + " value " + std::to_string(*v) +

@@ -1,5 +1,6 @@
 #include "drivers/sick/s300_telegram.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -30,13 +31,29 @@ constexpr size_t kMaxTotalBytes = kS300HeaderBytes + 2 * kS300MaxBeams + 2;
 
 }  // namespace
 
-uint16_t Crc16Ccitt(const uint8_t* data, size_t size, uint16_t crc) {
-  for (size_t i = 0; i < size; ++i) {
-    crc ^= static_cast<uint16_t>(data[i] << 8);
+namespace {
+
+// CRC-16/CCITT (polynomial 0x1021, MSB first) one byte at a time: entry b is the bitwise
+// update of a CRC whose top byte is b. Eight times fewer steps than bit by bit.
+std::array<uint16_t, 256> MakeCrc16Table() {
+  std::array<uint16_t, 256> table{};
+  for (int byte = 0; byte < 256; ++byte) {
+    uint16_t crc = static_cast<uint16_t>(byte << 8);
     for (int b = 0; b < 8; ++b) {
       crc = (crc & 0x8000) ? static_cast<uint16_t>((crc << 1) ^ 0x1021)
                            : static_cast<uint16_t>(crc << 1);
     }
+    table[static_cast<size_t>(byte)] = crc;
+  }
+  return table;
+}
+
+}  // namespace
+
+uint16_t Crc16Ccitt(const uint8_t* data, size_t size, uint16_t crc) {
+  static const std::array<uint16_t, 256> kTable = MakeCrc16Table();
+  for (size_t i = 0; i < size; ++i) {
+    crc = static_cast<uint16_t>((crc << 8) ^ kTable[((crc >> 8) ^ data[i]) & 0xFF]);
   }
   return crc;
 }
