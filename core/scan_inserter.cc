@@ -1,5 +1,6 @@
 #include "core/scan_inserter.h"
 
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -79,8 +80,25 @@ Status ScanInsertOptions::Validate() const {
   return OkStatus();
 }
 
+std::vector<Eigen::Vector2d> BeamDirections(const LaserScan& scan, double theta_rad) {
+  std::vector<Eigen::Vector2d> directions(scan.size());
+  for (size_t i = 0; i < scan.size(); ++i) {
+    const double a = theta_rad + scan.angle(i);
+    directions[i] = Eigen::Vector2d(std::cos(a), std::sin(a));
+  }
+  return directions;
+}
+
 InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
                        const ScanInsertOptions& options, OccupancyGrid& grid) {
+  return InsertScan(scan, scanner_in_grid, options, BeamDirections(scan, scanner_in_grid.theta_rad),
+                    grid);
+}
+
+InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
+                       const ScanInsertOptions& options,
+                       const std::vector<Eigen::Vector2d>& beam_directions, OccupancyGrid& grid) {
+  assert(beam_directions.size() == scan.size());
   const GridGeometry& g = grid.geometry();
   InsertStats stats;
   const Eigen::Vector2d origin = g.WorldToGrid(scanner_in_grid.translation());
@@ -93,9 +111,8 @@ InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
       ++stats.skipped;
       continue;
     }
-    const double a = scanner_in_grid.theta_rad + scan.angle(i);
-    const Eigen::Vector2d end = g.WorldToGrid(scanner_in_grid.translation() +
-                                              range * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    const Eigen::Vector2d end =
+        g.WorldToGrid(scanner_in_grid.translation() + range * beam_directions[i]);
     stats.cells_missed += WalkCells(
         g, origin, end, [&](const CellIndex& c) { grid.AddLogOdds(c, options.miss_log_odds); });
     if (!valid) continue;

@@ -4,6 +4,9 @@
 // hector_slam's defaults (hit probability 0.9, miss 0.4).
 #pragma once
 
+#include <Eigen/Core>
+#include <vector>
+
 #include "core/occupancy_grid.h"
 #include "core/scan.h"
 
@@ -30,5 +33,14 @@ struct InsertStats {
 // Cells outside the grid are ignored: beams are clipped to it.
 InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
                        const ScanInsertOptions& options, OccupancyGrid& grid);
+
+// The same with each beam's unit vector in the grid's frame given (BeamDirections), for one
+// scan inserted at one pose into several grids, the levels of a multi-resolution map.
+InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
+                       const ScanInsertOptions& options,
+                       const std::vector<Eigen::Vector2d>& beam_directions, OccupancyGrid& grid);
+
+// (cos, sin) of every beam's angle in the grid's frame, for a scanner heading `theta_rad`.
+std::vector<Eigen::Vector2d> BeamDirections(const LaserScan& scan, double theta_rad);
 
 }  // namespace fleetmap::core

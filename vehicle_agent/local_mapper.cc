@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/scan_inserter.h"
+
 namespace fleetmap::vehicle_agent {
 
 core::Status LocalMapperOptions::Validate() const {
@@ -33,15 +35,20 @@ LocalMapper::LocalMapper(const LocalMapperOptions& options, const core::Pose2& s
       last_insert_pose_(start_pose) {}
 
 std::vector<Eigen::Vector2d> LocalMapper::EndPoints(const core::LaserScan& scan,
-                                                    const core::Pose2& scanner_in_base) const {
+                                                    const core::Pose2& scanner_in_base) {
+  if (beams_.directions.size() != scan.size() || beams_.angle_min_rad != scan.angle_min_rad ||
+      beams_.angle_increment_rad != scan.angle_increment_rad) {
+    beams_.angle_min_rad = scan.angle_min_rad;
+    beams_.angle_increment_rad = scan.angle_increment_rad;
+    beams_.directions = core::BeamDirections(scan, 0.0);
+  }
   std::vector<Eigen::Vector2d> points;
   points.reserve(scan.size());
   for (size_t i = 0; i < scan.size(); ++i) {
     if (!scan.IsValidReturn(i)) continue;
     const double r = scan.ranges_m[i];
     if (r < options_.min_range_m || r > options_.max_range_m) continue;
-    const double a = scan.angle(i);
-    points.push_back(scanner_in_base.Apply({r * std::cos(a), r * std::sin(a)}));
+    points.push_back(scanner_in_base.Apply(r * beams_.directions[i]));
   }
   return points;
 }

@@ -48,8 +48,13 @@ class LocalMapper {
 
  private:
   std::vector<Eigen::Vector2d> EndPoints(const core::LaserScan& scan,
-                                         const core::Pose2& scanner_in_base) const;
+                                         const core::Pose2& scanner_in_base);
 
+  // The beams' unit vectors in the scanner frame, kept while the scanner's geometry stays.
+  struct BeamTable {
+    double angle_min_rad = 0, angle_increment_rad = 0;
+    std::vector<Eigen::Vector2d> directions;
+  } beams_;
   LocalMapperOptions options_;
   MultiResolutionMap map_;
   core::Pose2 pose_;

@@ -28,8 +28,11 @@ MultiResolutionMap::MultiResolutionMap(const MultiResolutionMapOptions& options,
 }
 
 void MultiResolutionMap::Insert(const core::LaserScan& scan, const core::Pose2& scanner_in_map) {
+  // One scan, one pose: every level's beams point the same way.
+  const std::vector<Eigen::Vector2d> directions =
+      core::BeamDirections(scan, scanner_in_map.theta_rad);
   for (core::OccupancyGrid& level : levels_)
-    core::InsertScan(scan, scanner_in_map, options_.insert, level);
+    core::InsertScan(scan, scanner_in_map, options_.insert, directions, level);
 }
 
 bool MultiResolutionMap::Inside(const Eigen::Vector2d& p, double margin_m) const {
