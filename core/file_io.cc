@@ -14,7 +14,7 @@ namespace {
 
 std::string ErrnoText() { return std::strerror(errno); }
 
-Status WriteAll(int fd, std::string_view bytes) {
+Status WriteAll(int fd, std::string_view bytes, bool sync) {
   size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
@@ -22,7 +22,7 @@ Status WriteAll(int fd, std::string_view bytes) {
     if (n < 0) return IoError("write failed: " + ErrnoText());
     done += static_cast<size_t>(n);
   }
-  if (::fsync(fd) != 0) return IoError("fsync failed: " + ErrnoText());
+  if (sync && ::fsync(fd) != 0) return IoError("fsync failed: " + ErrnoText());
   return OkStatus();
 }
 
@@ -56,12 +56,13 @@ Result<std::string> ReadFileBytes(const std::string& path, int64_t max_bytes) {
   return bytes;
 }
 
-Status WriteFileAtomically(const std::string& path, std::string_view bytes) {
+Status WriteFileAtomically(const std::string& path, std::string_view bytes, Durability durability) {
+  const bool sync = durability == Durability::kPowerLoss;
   std::string temp_path = path + ".tmp.XXXXXX";
   const int fd = ::mkstemp(temp_path.data());
   if (fd < 0) return IoError(path + ": cannot create a temporary file: " + ErrnoText());
   Status status = ::fchmod(fd, 0644) == 0 ? OkStatus() : IoError("chmod failed: " + ErrnoText());
-  if (status.ok()) status = WriteAll(fd, bytes);
+  if (status.ok()) status = WriteAll(fd, bytes, sync);
   if (::close(fd) != 0 && status.ok()) status = IoError("close failed: " + ErrnoText());
   if (status.ok() && ::rename(temp_path.c_str(), path.c_str()) != 0) {
     status = IoError("cannot rename the temporary file into place: " + ErrnoText());
@@ -70,7 +71,7 @@ Status WriteFileAtomically(const std::string& path, std::string_view bytes) {
     ::unlink(temp_path.c_str());
     return status.WithContext(path);
   }
-  SyncFolderOf(path);
+  if (sync) SyncFolderOf(path);
   return OkStatus();
 }
 

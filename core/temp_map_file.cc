@@ -75,10 +75,11 @@ Result<TempMap> DecodeTempMap(const uint8_t* data, size_t size) {
   return map;
 }
 
-Status SaveTempMap(const TempMap& map, const std::string& path) {
+Status SaveTempMap(const TempMap& map, const std::string& path, Durability durability) {
   const std::vector<uint8_t> bytes = EncodeTempMap(map);
   return WriteFileAtomically(
-      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+      durability);
 }
 
 Result<TempMap> LoadTempMap(const std::string& path) {

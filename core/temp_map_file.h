@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "core/file_io.h"
 #include "core/temp_map.h"
 
 namespace fleetmap::core {
@@ -12,7 +13,8 @@ namespace fleetmap::core {
 std::vector<uint8_t> EncodeTempMap(const TempMap& map);
 Result<TempMap> DecodeTempMap(const uint8_t* data, size_t size);
 
-Status SaveTempMap(const TempMap& map, const std::string& path);
+Status SaveTempMap(const TempMap& map, const std::string& path,
+                   Durability durability = Durability::kPowerLoss);
 Result<TempMap> LoadTempMap(const std::string& path);
 
 }  // namespace fleetmap::core

@@ -193,6 +193,11 @@ TEST_F(PgmTest, AtomicWriteReplacesContent) {
   ASSERT_TRUE(bytes.ok());
   EXPECT_EQ(*bytes, "second");
   EXPECT_EQ(ReadFileBytes(File("f"), 3).status().code(), StatusCode::kOutOfRange);
+  // Without fsync (kept across a process crash only) it replaces the content the same way.
+  ASSERT_TRUE(WriteFileAtomically(File("f"), "third", Durability::kProcessCrash).ok());
+  EXPECT_EQ(ReadFileBytes(File("f"), 100).value(), "third");
+  EXPECT_EQ(WriteFileAtomically(File("missing/f"), "x", Durability::kProcessCrash).code(),
+            StatusCode::kIoError);
 }
 
 TEST_F(PgmTest, FailedAtomicWriteLeavesNoFile) {

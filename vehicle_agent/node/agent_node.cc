@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "fleetmap/tempmap_ack_t.hpp"
@@ -24,6 +25,10 @@ Eigen::Matrix3d ExternalCovariance(const core::PoseEstimate& pose, const Localiz
       .asDiagonal();
 }
 
+// Temporary-map numbers reserved on disk at a time: one fsync per 32 maps (every minute or
+// two at one map per 3 s).
+constexpr int32_t kSequenceBlock = 32;
+
 }  // namespace
 
 core::Result<std::unique_ptr<AgentNode>> AgentNode::Create(
@@ -35,6 +40,7 @@ core::Result<std::unique_ptr<AgentNode>> AgentNode::Create(
     options.pipeline.localizer.initial_pose_mode = InitialPoseMode::kGlobal;
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
   std::unique_ptr<AgentNode> node(new AgentNode(std::move(options), publisher, log, now_s));
+  node->sequences_reserved_ = stored.next;
   if (!stored.issue.ok()) {
     node->log_.Warning("temporary-map numbering: " + stored.issue.ToString() + "; going on from " +
                        std::to_string(stored.next));
@@ -351,9 +357,21 @@ void AgentNode::ProcessScan(const core::LaserScan& scan, double now_s) {
 
 void AgentNode::Keep(const core::TempMap& map, double now_s) {
   ++counters_.tempmaps_closed;
-  // The number goes on disk before the map leaves: a crash now cannot reuse it.
-  const core::Status stored = sequences_.Store(map.sequence + 1);
-  if (!stored.ok()) log_.Once("sequence store", "cannot store the numbering: " + stored.ToString());
+  // The number goes on disk before the map leaves: a crash now cannot reuse it. Numbers are
+  // reserved a block at a time, so that the fsync (which can stall this loop for seconds on a
+  // busy disk) comes once per block, not once per map; a restart skips the rest of a block,
+  // and the aggregator needs numbers that are unique, not consecutive.
+  if (map.sequence >= sequences_reserved_) {
+    const int32_t reserve = map.sequence < std::numeric_limits<int32_t>::max() - kSequenceBlock
+                                ? map.sequence + kSequenceBlock
+                                : std::numeric_limits<int32_t>::max();
+    const core::Status stored = sequences_.Store(reserve);
+    if (stored.ok()) {
+      sequences_reserved_ = reserve;
+    } else {
+      log_.Once("sequence store", "cannot store the numbering: " + stored.ToString());
+    }
+  }
   const core::Status added = outbox_.Add(map, now_s);
   if (!added.ok()) {
     log_.Once("outbox", "temporary map not kept: " + added.ToString());

@@ -105,6 +105,8 @@ class AgentNode {
   Publisher* const publisher_;
   CauseLog log_;
   SequenceStore sequences_;
+  // Numbers below this are on disk as used (reserved kSequenceBlock at a time).
+  int32_t sequences_reserved_ = 1;
   AgentPipeline pipeline_;
   TempMapOutbox outbox_;
   MapFollower follower_;
