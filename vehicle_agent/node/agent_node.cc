@@ -41,6 +41,7 @@ core::Result<std::unique_ptr<AgentNode>> AgentNode::Create(
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
   std::unique_ptr<AgentNode> node(new AgentNode(std::move(options), publisher, log, now_s));
   node->sequences_reserved_ = stored.next;
+  node->ReserveSequences(stored.next);  // the first block now, not on the scan loop
   if (!stored.issue.ok()) {
     node->log_.Warning("temporary-map numbering: " + stored.issue.ToString() + "; going on from " +
                        std::to_string(stored.next));
@@ -357,21 +358,8 @@ void AgentNode::ProcessScan(const core::LaserScan& scan, double now_s) {
 
 void AgentNode::Keep(const core::TempMap& map, double now_s) {
   ++counters_.tempmaps_closed;
-  // The number goes on disk before the map leaves: a crash now cannot reuse it. Numbers are
-  // reserved a block at a time, so that the fsync (which can stall this loop for seconds on a
-  // busy disk) comes once per block, not once per map; a restart skips the rest of a block,
-  // and the aggregator needs numbers that are unique, not consecutive.
-  if (map.sequence >= sequences_reserved_) {
-    const int32_t reserve = map.sequence < std::numeric_limits<int32_t>::max() - kSequenceBlock
-                                ? map.sequence + kSequenceBlock
-                                : std::numeric_limits<int32_t>::max();
-    const core::Status stored = sequences_.Store(reserve);
-    if (stored.ok()) {
-      sequences_reserved_ = reserve;
-    } else {
-      log_.Once("sequence store", "cannot store the numbering: " + stored.ToString());
-    }
-  }
+  // The number goes on disk before the map leaves: a crash now cannot reuse it.
+  if (map.sequence >= sequences_reserved_) ReserveSequences(map.sequence);
   const core::Status added = outbox_.Add(map, now_s);
   if (!added.ok()) {
     log_.Once("outbox", "temporary map not kept: " + added.ToString());
@@ -381,6 +369,21 @@ void AgentNode::Keep(const core::TempMap& map, double now_s) {
             " closed: " + std::to_string(map.grid.geometry().width()) + " x " +
             std::to_string(map.grid.geometry().height()) + " cells over " +
             std::to_string(static_cast<int>(std::lround(map.end_s - map.start_s))) + " s");
+}
+
+// Numbers are reserved a block at a time, so that the fsync (which can stall the scan loop for
+// seconds on a busy disk) comes once per block, not once per map; a restart skips the rest of
+// a block, and the aggregator needs numbers that are unique, not consecutive.
+void AgentNode::ReserveSequences(int32_t from) {
+  const int32_t reserve = from < std::numeric_limits<int32_t>::max() - kSequenceBlock
+                              ? from + kSequenceBlock
+                              : std::numeric_limits<int32_t>::max();
+  const core::Status stored = sequences_.Store(reserve);
+  if (stored.ok()) {
+    sequences_reserved_ = reserve;
+  } else {
+    log_.Once("sequence store", "cannot store the numbering: " + stored.ToString());
+  }
 }
 
 void AgentNode::Shutdown(double now_s) {

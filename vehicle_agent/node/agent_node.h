@@ -91,6 +91,7 @@ class AgentNode {
   void ProcessScan(const core::LaserScan& scan, double now_s);
   void ProcessExternalPose(const core::PoseEstimate& pose);
   void InitializeFromExternal(const core::PoseEstimate& pose);
+  void ReserveSequences(int32_t from);  // stores `from` + a block as the next number
   void Keep(const core::TempMap& map, double now_s);
   // Due tiles join the send queue; as many leave as the pacer allows (all of them: at exit).
   void SendTiles(double now_s, bool all = false);
