@@ -60,15 +60,17 @@ ScanUpdate LocalMapper::AddScan(const core::LaserScan& scan, const core::Pose2& 
       std::hypot(odometry_delta.x_m, odometry_delta.y_m) <= options_.rest_max_translation_m &&
       std::abs(odometry_delta.theta_rad) <= options_.rest_max_rotation_rad &&
       (options_.rest_max_translation_m > 0 || options_.rest_max_rotation_rad > 0);
-  if (!first_ && at_rest) {
-    pose_ = pose_ * odometry_delta;
-    update.at_rest = true;
-  } else if (!first_) {
+  if (!first_) {
     const core::Pose2 prediction = pose_ * odometry_delta;
-    update.match = MatchScan(map_, EndPoints(scan, scanner_in_base), prediction, odometry_delta,
-                             options_.matcher);
-    pose_ = update.match.pose;
-    update.matched = true;
+    if (at_rest) {
+      pose_ = prediction;
+      update.at_rest = true;
+    } else {
+      update.match = MatchScan(map_, EndPoints(scan, scanner_in_base), prediction, odometry_delta,
+                               options_.matcher);
+      pose_ = update.match.pose;
+      update.matched = true;
+    }
   }
   const core::Pose2 moved = core::Between(last_insert_pose_, pose_);
   if (first_ || std::hypot(moved.x_m, moved.y_m) >= options_.update_min_distance_m ||

@@ -33,6 +33,7 @@ class MapInterpolator {
     double p00, p10, p01, p11;  // probabilities of the four cells around it
   };
   Corners CornersAt(const Eigen::Vector2d& p) const;
+  static double Blend(const Corners& c);  // the bilinear value
 
   const core::OccupancyGrid* grid_;
   // log-odds -> probability, sampled over the grid's clamping range (exp per lookup would be
@@ -75,17 +76,18 @@ inline MapInterpolator::Corners MapInterpolator::CornersAt(const Eigen::Vector2d
   return c;
 }
 
-inline double MapInterpolator::Value(const Eigen::Vector2d& p) const {
-  const Corners c = CornersAt(p);
+inline double MapInterpolator::Blend(const Corners& c) {
   return (1 - c.fy) * ((1 - c.fx) * c.p00 + c.fx * c.p10) +
          c.fy * ((1 - c.fx) * c.p01 + c.fx * c.p11);
 }
+
+inline double MapInterpolator::Value(const Eigen::Vector2d& p) const { return Blend(CornersAt(p)); }
 
 inline InterpolatedValue MapInterpolator::At(const Eigen::Vector2d& p) const {
   const Corners c = CornersAt(p);
   const double fx = c.fx, fy = c.fy;
   InterpolatedValue out;
-  out.value = (1 - fy) * ((1 - fx) * c.p00 + fx * c.p10) + fy * ((1 - fx) * c.p01 + fx * c.p11);
+  out.value = Blend(c);
   out.gradient_per_m = Eigen::Vector2d((1 - fy) * (c.p10 - c.p00) + fy * (c.p11 - c.p01),
                                        (1 - fx) * (c.p01 - c.p00) + fx * (c.p11 - c.p10)) /
                        grid_->geometry().resolution_m();

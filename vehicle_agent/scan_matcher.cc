@@ -12,7 +12,6 @@ namespace {
 struct NormalEquations {
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  double value_sum = 0.0;
 };
 
 // Accumulates J^T J and J^T r of residuals r_i = 1 - M(S_i(pose)).
@@ -30,7 +29,6 @@ NormalEquations Accumulate(const MapInterpolator& map, const std::vector<Eigen::
     const Eigen::Vector3d j(m.gradient_per_m.x(), m.gradient_per_m.y(), d_theta);
     ne.h += weight * j * j.transpose();
     ne.b += weight * j * (1.0 - m.value);
-    ne.value_sum += m.value;
   }
   return ne;
 }

@@ -29,10 +29,6 @@ bool HeaderMatches(const uint8_t* p, size_t available) {
 size_t TotalBytes(uint16_t size_words) { return 4 + 2 * size_t{size_words}; }
 constexpr size_t kMaxTotalBytes = kS300HeaderBytes + 2 * kS300MaxBeams + 2;
 
-}  // namespace
-
-namespace {
-
 // CRC-16/CCITT (polynomial 0x1021, MSB first) one byte at a time: entry b is the bitwise
 // update of a CRC whose top byte is b. Eight times fewer steps than bit by bit.
 std::array<uint16_t, 256> MakeCrc16Table() {
