@@ -37,7 +37,8 @@ Localizer::Localizer(const LocalizerOptions& options)
       field_(options.likelihood_field),
       rng_(options.seed),
       odometry_(options.max_odometry_step_m, options.max_odometry_step_rad,
-                options.max_odometry_speed_mps, options.max_odometry_yaw_rate_radps) {
+                options.max_odometry_speed_mps, options.max_odometry_yaw_rate_radps),
+      path_(options.prediction_step_m, options.prediction_step_rad) {
   assert(options.Validate().ok());
   if (options.w_avg_model == WAvgModel::kBeamModel) beam_model_ = MakeBeamModel(options.beam_model);
   moments_.mean = options.initial_pose_in_map;
@@ -87,6 +88,7 @@ void Localizer::Restart(ParticleSet particles) {
   force_update_ = true;
   moments_ = ComputeMoments(particles_);
   clean_odom_at_update_ = OdomAtScan();
+  path_.Restart(clean_odom_at_update_);
 }
 
 core::Status Localizer::AddExternalPose(const core::PoseEstimate& pose_in_map) {
@@ -141,6 +143,9 @@ core::PoseEstimate Localizer::Estimate(bool external) {
 
 void Localizer::TrackOdometry(const core::OdometrySample& odom) {
   switch (odometry_.Add(odom)) {
+    case OdometryTracker::Outcome::kApplied:
+      path_.Add(odometry_.clean_pose());
+      break;
     case OdometryTracker::Outcome::kInvalid:
       ++counters_.odometry_invalid;
       break;
@@ -152,8 +157,9 @@ void Localizer::TrackOdometry(const core::OdometrySample& odom) {
       break;
     case OdometryTracker::Outcome::kClockStep:
       ++counters_.clock_steps_back;
+      path_.Add(odometry_.clean_pose());
       break;
-    default:
+    case OdometryTracker::Outcome::kFirst:
       break;
   }
 }
@@ -235,10 +241,19 @@ void Localizer::FilterUpdate(const core::LaserScan& scan, const core::Pose2& sca
 }
 
 void Localizer::Predict() {
-  const core::Pose2 delta = core::Between(clean_odom_at_update_, OdomAtScan());
+  core::Pose2 from = clean_odom_at_update_;
+  for (const core::Pose2& waypoint : path_.waypoints()) {
+    PredictStep(core::Between(from, waypoint));
+    from = waypoint;
+  }
+  PredictStep(core::Between(from, OdomAtScan()));
+  clean_odom_at_update_ = OdomAtScan();
+  path_.Restart(clean_odom_at_update_);
+}
+
+void Localizer::PredictStep(const core::Pose2& delta) {
   for (Particle& p : particles_)
     p.pose = SampleMotionModelOdometry(p.pose, delta, options_.motion, rng_);
-  clean_odom_at_update_ = OdomAtScan();
 }
 
 void Localizer::Weigh(LocalizerStats& stats) {

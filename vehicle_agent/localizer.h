@@ -21,6 +21,7 @@
 #include "vehicle_agent/input_guard.h"
 #include "vehicle_agent/likelihood_field.h"
 #include "vehicle_agent/localizer_options.h"
+#include "vehicle_agent/odometry_path.h"
 #include "vehicle_agent/particle_set.h"
 
 namespace fleetmap::vehicle_agent {
@@ -110,6 +111,7 @@ class Localizer {
   void FilterUpdate(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
                     LocalizerStats& stats);
   void Predict();
+  void PredictStep(const core::Pose2& delta);
   void Weigh(LocalizerStats& stats);
   void Resample();
   bool FuseOrReinitialize();
@@ -134,6 +136,7 @@ class Localizer {
   PoseMoments moments_;               // of the particles at the last filter update
   core::Pose2 clean_odom_at_update_;  // the tracker's clean odometry then
   OdometryTracker odometry_;
+  OdometryPath path_;         // the clean odometry's way since clean_odom_at_update_
   core::Pose2 odom_to_scan_;  // the last odometry sample carried to the scan's stamp
   ScanGate scans_;
   bool has_external_ = false;

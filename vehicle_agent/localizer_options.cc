@@ -34,6 +34,8 @@ core::Status LocalizerOptions::Validate() const {
                                        resample_min_neff_ratio, "in (0, 1]"));
   FLEETMAP_RETURN_IF_ERROR(CheckNonNegative(update_min_translation_m, "update_min_translation_m"));
   FLEETMAP_RETURN_IF_ERROR(CheckNonNegative(update_min_rotation_rad, "update_min_rotation_rad"));
+  FLEETMAP_RETURN_IF_ERROR(CheckPositive(prediction_step_m, "prediction_step_m"));
+  FLEETMAP_RETURN_IF_ERROR(CheckPositive(prediction_step_rad, "prediction_step_rad"));
   if (w_avg_model == WAvgModel::kBeamModel) FLEETMAP_RETURN_IF_ERROR(beam_model.Validate());
   const core::Pose2& p = initial_pose_in_map;
   FLEETMAP_RETURN_IF_ERROR(CheckFinite(p.x_m, "initial_pose_in_map.x_m"));

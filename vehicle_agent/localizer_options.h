@@ -49,6 +49,12 @@ struct LocalizerOptions {
   // every scan, standing still too, fitting the particles to one view. >= 0 each.
   double update_min_translation_m = 0.05;
   double update_min_rotation_rad = 0.05;
+  // Motion longer than this between two filter updates (scans skipped while the agent fell
+  // behind) is predicted in steps of at most about this size along the odometry's path, not
+  // as one increment whose noise would spread the particles over metres (OdometryPath). Well
+  // above the update thresholds: at every update the prediction is one increment. > 0 each.
+  double prediction_step_m = 0.25;
+  double prediction_step_rad = 0.25;
   // --- W_avg for the divergence detector ---
   WAvgModel w_avg_model = WAvgModel::kBeamModel;
   BeamModelOptions beam_model;  // used when w_avg_model is kBeamModel

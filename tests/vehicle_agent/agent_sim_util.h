@@ -58,6 +58,9 @@ struct RunOptions {
   // External poses from the simulator (the scenario's external_pose) go to the localizer
   // until this time.
   double external_poses_until_s = -1.0;
+  // Scans stamped in [gap_from_s, gap_to_s) never reach the localizer (an agent that stalled),
+  // while every odometry sample in the gap does, through AddOdometry, as the agent feeds them.
+  double gap_from_s = -1.0, gap_to_s = -1.0;
 };
 
 struct SimRun {
@@ -82,6 +85,8 @@ inline SimRun RunVehicle(const sim::World& world, RunOptions options) {
     if (sim::EventTime(*event) > options.end_s) break;
     if (const auto* o = std::get_if<sim::OdometryEvent>(&*event); o && o->vehicle == v) {
       odom = {o->stamp_s, o->odom_pose, o->v_mps, o->omega_radps};
+      if (o->stamp_s >= options.gap_from_s && o->stamp_s < options.gap_to_s)
+        localizer.AddOdometry(odom);
       continue;
     }
     if (const auto* x = std::get_if<sim::ExternalPoseEvent>(&*event); x && x->vehicle == v) {
@@ -95,6 +100,7 @@ inline SimRun RunVehicle(const sim::World& world, RunOptions options) {
     }
     const auto* scan = std::get_if<sim::ScanEvent>(&*event);
     if (!scan || scan->vehicle != v) continue;
+    if (scan->scan.stamp_s >= options.gap_from_s && scan->scan.stamp_s < options.gap_to_s) continue;
     if (options.before_scan) options.before_scan(scan->scan.stamp_s, localizer);
     ScanRecord r;
     r.stamp_s = scan->scan.stamp_s;
