@@ -43,6 +43,8 @@ options:
   --max-range M        returns farther away are not used          [25]
   --prior-xy M, --prior-theta RAD, --sigma-map P
                        odometry prior (base) and map noise       [0.005, 0.005, 0.25]
+  --coarse-iterations N, --fine-iterations N
+                       Gauss-Newton steps per coarser level / on the finest  [3, 5]
   --heading-search-base RAD, --heading-search F
                        heading searched within +-(RAD + F x odometry rotation) before
                        Gauss-Newton; 0 and 0: no search            [0.035, 1.0]
@@ -100,6 +102,10 @@ bool Parse(int argc, char** argv, Args& a) {
         a.mapper.matcher.sigma_map = std::stod(v);
       else if (arg == "--heading-search")
         a.mapper.matcher.heading_search_per_rad = std::stod(v);
+      else if (arg == "--coarse-iterations")
+        a.mapper.matcher.coarse_iterations = std::stoi(v);
+      else if (arg == "--fine-iterations")
+        a.mapper.matcher.fine_iterations = std::stoi(v);
       else if (arg == "--heading-search-base")
         a.mapper.matcher.heading_search_base_rad = std::stod(v);
       else if (arg == "--update-distance")
@@ -124,12 +130,17 @@ std::string Stem(const std::string& path) {
   return s.substr(0, s.find('.'));
 }
 
-std::vector<carmen::TimedPose> RunMatcher(const carmen::CarmenLog& log, const Args& args,
-                                          double& ms_per_scan) {
+vehicle_agent::LocalMapperOptions MapperOptions(const Args& args) {
   vehicle_agent::LocalMapperOptions options = args.mapper;
   options.map.resolution_m = args.resolution_m;
   options.map.levels = args.levels;
   options.map.size_m = args.size_m;
+  return options;
+}
+
+std::vector<carmen::TimedPose> RunMatcher(const carmen::CarmenLog& log, const Args& args,
+                                          double& ms_per_scan) {
+  const vehicle_agent::LocalMapperOptions options = MapperOptions(args);
   std::vector<carmen::TimedPose> trajectory;
   std::unique_ptr<vehicle_agent::LocalMapper> mapper;
   double map_start_s = 0;
@@ -193,6 +204,8 @@ int main(int argc, char** argv) {
       return std::fputs(kUsage, stdout), 0;
   Args args;
   if (!Parse(argc, argv, args)) return std::fputs(kUsage, stderr), 2;
+  if (const core::Status s = MapperOptions(args).Validate(); !s.ok())
+    return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 2;
   const std::string name = args.name.empty() ? Stem(args.carmen) : args.name;
   auto log = carmen::ReadCarmenLog(args.carmen);
   if (!log.ok())

@@ -39,6 +39,12 @@ for c in export history rollback reset-region promote; do
 done
 pass "--help and --version"
 
+# Options out of range are refused before any work, not run with.
+out=$("$bin/fleetmap-carmen-eval" --carmen none.clf --relations none.relations --fine-iterations 0 2>&1)
+rc=$?
+[[ $rc == 2 && $out == *"scan matcher options out of range"* ]] || fail "carmen-eval took --fine-iterations 0 (exit $rc): $out"
+pass "options out of range refused"
+
 # 2. Configure: the static map, the fleet key.
 scenario=$src/tools/sim/worlds/livinglab/addition.yaml
 map=$src/tools/sim/worlds/livinglab/livinglab.yaml
