@@ -12,6 +12,7 @@ packages=(
   iproute2  # ip route for LCM multicast on loopback
   nlohmann-json3-dev  # SICK recordings (.pcapng.json) in the emulator and tests
   qemu-system-x86 linux-image-amd64 busybox-static can-utils cpio  # SocketCAN tests in a VM
+  clang-format  # scripts/check_format.sh (ctest format_test)
   clang-14 libclang-rt-14-dev  # libFuzzer targets (scripts/fuzz.sh, docs/fuzzing.md)
   libsodium-dev  # message authentication: HMAC-SHA-256, key derivation (docs/security.md)
   gnuplot-nox  # the LAN experiments' plots (tools/lan, docs/lan_experiments.md)

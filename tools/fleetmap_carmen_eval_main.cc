@@ -1,6 +1,7 @@
 // fleetmap-carmen-eval: runs the temporary-map builder's scan matcher over a CARMEN log and
 // scores its trajectory with the SLAM benchmark's relations, next to the log's odometry.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -206,6 +207,10 @@ int main(int argc, char** argv) {
   if (!Parse(argc, argv, args)) return std::fputs(kUsage, stderr), 2;
   if (const core::Status s = MapperOptions(args).Validate(); !s.ok())
     return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 2;
+  if (!(args.window_s > 0) || !(args.lifetime_s >= 0 && std::isfinite(args.lifetime_s)))
+    return std::fputs("fleetmap-carmen-eval: --window needs seconds > 0, --map-lifetime >= 0\n",
+                      stderr),
+           2;
   const std::string name = args.name.empty() ? Stem(args.carmen) : args.name;
   auto log = carmen::ReadCarmenLog(args.carmen);
   if (!log.ok())

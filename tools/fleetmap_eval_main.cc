@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "core/codecs/map_render.h"
 #include "core/file_io.h"
 #include "core/map_io.h"
-#include "core/codecs/map_render.h"
 #include "core/version.h"
 #include "tools/eval/agents_pipeline.h"
 #include "tools/eval/eval_figures.h"
@@ -130,6 +130,21 @@ double Number(const std::string& text) {
   return end && *end == '\0' && !text.empty() ? v : std::nan("");
 }
 
+// The numeric options, whichever pipeline uses them: a value out of range is a usage error,
+// never silently replaced by a default.
+core::Status CheckNumbers(const Args& args) {
+  const double anchor_m = Number(args.anchor_error_m), anchor_deg = Number(args.anchor_error_deg);
+  if (!(anchor_m >= 0 && anchor_m < 1e3) || !(anchor_deg >= 0 && anchor_deg <= 180))
+    return core::InvalidArgument("--anchor-error-m needs metres >= 0, --anchor-error-deg 0..180");
+  const double confirmations = Number(args.confirmations);
+  if (confirmations != 1.0 && confirmations != 2.0)
+    return core::InvalidArgument("--confirmations takes 1 or 2");
+  const double seed = Number(args.seed);
+  if (!(seed >= 0 && seed < 4e9 && seed == std::floor(seed)))
+    return core::InvalidArgument("--seed needs a whole number >= 0");
+  return core::OkStatus();
+}
+
 // The pipeline the arguments name, or a usage error (exit 2) / another error (exit 1).
 core::Result<std::unique_ptr<eval::Pipeline>> MakePipeline(const Args& args,
                                                            const sim::World& world) {
@@ -138,8 +153,7 @@ core::Result<std::unique_ptr<eval::Pipeline>> MakePipeline(const Args& args,
     eval::AgentsPipelineOptions agents;
     FLEETMAP_ASSIGN_OR_RETURN(agents.aggregator.alignment.mode,
                               aggregator::ParseAlignmentMode(args.align_mode));
-    const double confirmations = Number(args.confirmations);
-    agents.aggregator.merge.confirmations = confirmations == 1.0 ? 1 : 2;
+    agents.aggregator.merge.confirmations = Number(args.confirmations) == 1.0 ? 1 : 2;
     return eval::MakeAgentsPipeline(world, agents);
   }
   eval::TruthTempMapOptions options;
@@ -147,12 +161,8 @@ core::Result<std::unique_ptr<eval::Pipeline>> MakePipeline(const Args& args,
                             aggregator::ParseAlignmentMode(args.align_mode));
   options.anchor_error_max_m = Number(args.anchor_error_m);
   options.anchor_error_max_rad = Number(args.anchor_error_deg) * M_PI / 180.0;
-  const double seed = Number(args.seed);
-  if (!(seed >= 0 && seed < 4e9 && seed == std::floor(seed)))
-    return core::InvalidArgument("--seed needs a whole number >= 0");
-  options.seed = static_cast<uint32_t>(seed);
-  const double confirmations = Number(args.confirmations);
-  options.aggregator.merge.confirmations = confirmations == 1.0 ? 1 : confirmations == 2.0 ? 2 : 0;
+  options.seed = static_cast<uint32_t>(Number(args.seed));
+  options.aggregator.merge.confirmations = Number(args.confirmations) == 1.0 ? 1 : 2;
   return eval::MakeTruthTempMapPipeline(world, options);
 }
 
@@ -283,6 +293,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "fleetmap-eval: unknown pipeline '%s' (known: oracle, truthmaps, agents)\n",
                  args.pipeline.c_str());
+    return 2;
+  }
+  if (const core::Status s = CheckNumbers(args); !s.ok()) {
+    std::fprintf(stderr, "fleetmap-eval: %s\n", s.ToString().c_str());
     return 2;
   }
   auto world = sim::World::Load(args.scenario, args.map);

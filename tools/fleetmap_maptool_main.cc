@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/map_io.h"
 #include "core/codecs/map_render.h"
+#include "core/map_io.h"
 #include "core/tile_delta.h"
 #include "core/version.h"
 #include "tools/sim/livinglab_map.h"

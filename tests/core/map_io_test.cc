@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/file_io.h"
 #include "core/codecs/map_render.h"
+#include "core/file_io.h"
 
 namespace fleetmap::core {
 namespace {

@@ -43,6 +43,9 @@ pass "--help and --version"
 out=$("$bin/fleetmap-carmen-eval" --carmen none.clf --relations none.relations --fine-iterations 0 2>&1)
 rc=$?
 [[ $rc == 2 && $out == *"scan matcher options out of range"* ]] || fail "carmen-eval took --fine-iterations 0 (exit $rc): $out"
+out=$("$bin/fleetmap-eval" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --confirmations 3 2>&1)
+rc=$?
+[[ $rc == 2 && $out == *"--confirmations takes 1 or 2"* ]] || fail "fleetmap-eval took --confirmations 3 (exit $rc): $out"
 pass "options out of range refused"
 
 # 2. Configure: the static map, the fleet key.

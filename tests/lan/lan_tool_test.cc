@@ -52,9 +52,9 @@ core::OccupancyGrid Room(int width = 64, int height = 64) {
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const bool corner = x < 4 && y < 4;
-      grid.SetState({x, y}, corner      ? core::CellState::kUnknown
-                            : x == 10   ? core::CellState::kOccupied
-                                        : core::CellState::kFree);
+      grid.SetState({x, y}, corner    ? core::CellState::kUnknown
+                            : x == 10 ? core::CellState::kOccupied
+                                      : core::CellState::kFree);
     }
   }
   return grid;
@@ -156,7 +156,7 @@ TEST(MapResampleTest, OccupiedWinsThenHalfFreeIsFree) {
   fine.SetState({1, 1}, core::CellState::kOccupied);  // block (0, 0): occupied
   fine.SetState({2, 2}, core::CellState::kUnknown);   // block (1, 1): 3 free of 4
   fine.SetState({3, 2}, core::CellState::kUnknown);
-  fine.SetState({2, 3}, core::CellState::kUnknown);   // ... now 1 free of 4: unknown
+  fine.SetState({2, 3}, core::CellState::kUnknown);  // ... now 1 free of 4: unknown
   const core::OccupancyGrid coarse = ResampleMap(fine, 2);
   ASSERT_EQ(coarse.geometry().width(), 3);  // the last column covers one fine column
   ASSERT_EQ(coarse.geometry().height(), 2);

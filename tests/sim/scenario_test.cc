@@ -81,7 +81,8 @@ TEST(WorldTest, RejectsARouteThroughAWall) {
   for (int y = 0; y < 120; ++y) room.SetState({100, y}, core::CellState::kOccupied);
   auto w = World::Create(s, room);
   ASSERT_FALSE(w.ok());
-  EXPECT_THAT(w.status().message(), HasSubstr("tiny.yaml:8: vehicles[0].route leg 0: runs through a wall"));
+  EXPECT_THAT(w.status().message(),
+              HasSubstr("tiny.yaml:8: vehicles[0].route leg 0: runs through a wall"));
 }
 
 TEST(WorldTest, RejectsAMissingMapNamingTheScenario) {

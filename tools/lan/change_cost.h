@@ -18,14 +18,14 @@ namespace fleetmap::lan {
 constexpr int64_t kOccupancyGridHeaderBytes = 103;
 
 struct ChangeCost {
-  int changes = 0;                     // versions the aggregator sent a MAP_DELTA for
-  double delta_bytes_mean = 0.0;       // LCM payload bytes of one change's tiles, each once
-  double delta_tiles_mean = 0.0;       // tiles of one change
-  int keyframes_complete = 0;          // versions of which every keyframe tile was logged
-  double keyframe_bytes = 0.0;         // one whole keyframe's payload bytes (mean)
-  int keyframe_tiles = 0;              // tiles of the whole map
-  int64_t map_cells = 0;               // width x height of the current map (from keyframes)
-  int64_t occupancy_grid_bytes = 0;    // map_cells + kOccupancyGridHeaderBytes; 0: no keyframe
+  int changes = 0;                   // versions the aggregator sent a MAP_DELTA for
+  double delta_bytes_mean = 0.0;     // LCM payload bytes of one change's tiles, each once
+  double delta_tiles_mean = 0.0;     // tiles of one change
+  int keyframes_complete = 0;        // versions of which every keyframe tile was logged
+  double keyframe_bytes = 0.0;       // one whole keyframe's payload bytes (mean)
+  int keyframe_tiles = 0;            // tiles of the whole map
+  int64_t map_cells = 0;             // width x height of the current map (from keyframes)
+  int64_t occupancy_grid_bytes = 0;  // map_cells + kOccupancyGridHeaderBytes; 0: no keyframe
 };
 
 // From a downlink log's messages.

@@ -41,10 +41,10 @@ core::Result<std::vector<uint8_t>> FrameOf(const std::string& group, const LogMe
 
 std::vector<CodecVariant> DefaultCodecVariants() {
   using core::Compression;
-  return {{"raw8", true, Compression::kNone, 0},   {"none", false, Compression::kNone, 0},
-          {"zlib1", false, Compression::kZlib, 1}, {"zlib6", false, Compression::kZlib, 6},
-          {"zlib9", false, Compression::kZlib, 9}, {"zstd1", false, Compression::kZstd, 1},
-          {"zstd3", false, Compression::kZstd, 3}, {"zstd9", false, Compression::kZstd, 9},
+  return {{"raw8", true, Compression::kNone, 0},    {"none", false, Compression::kNone, 0},
+          {"zlib1", false, Compression::kZlib, 1},  {"zlib6", false, Compression::kZlib, 6},
+          {"zlib9", false, Compression::kZlib, 9},  {"zstd1", false, Compression::kZstd, 1},
+          {"zstd3", false, Compression::kZstd, 3},  {"zstd9", false, Compression::kZstd, 9},
           {"zstd19", false, Compression::kZstd, 19}};
 }
 

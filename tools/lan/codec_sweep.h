@@ -17,7 +17,7 @@
 namespace fleetmap::lan {
 
 struct CodecVariant {
-  std::string name;       // e.g. "zstd3", "raw8"
+  std::string name;        // e.g. "zstd3", "raw8"
   bool one_byte_per_cell;  // true: tri-state frames become kTriState8Bit (log-odds stay int8)
   core::Compression compression;
   int level;  // zstd 1..19, zlib 1..9; ignored without compression
@@ -28,9 +28,9 @@ struct CodecVariant {
 std::vector<CodecVariant> DefaultCodecVariants();
 
 struct ChannelGroupBytes {
-  int64_t messages = 0;       // tiles that decoded
-  int64_t sent_bytes = 0;     // their LCM payload bytes as recorded
-  int64_t undecodable = 0;    // tiles whose message or frame did not decode (not counted)
+  int64_t messages = 0;     // tiles that decoded
+  int64_t sent_bytes = 0;   // their LCM payload bytes as recorded
+  int64_t undecodable = 0;  // tiles whose message or frame did not decode (not counted)
   std::map<std::string, int64_t> bytes_by_variant;  // the same messages with recoded frames
 };
 

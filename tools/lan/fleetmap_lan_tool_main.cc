@@ -61,7 +61,8 @@ int LogCommand(const std::string& command, std::vector<std::string> logs) {
   auto messages = lan::ReadLogs(logs);
   if (!messages.ok()) return Fail(messages.status());
   std::string lines;
-  if (command == "status") lines = lan::StatusFigureLines(lan::SummarizeStatus(*messages, until_utime));
+  if (command == "status")
+    lines = lan::StatusFigureLines(lan::SummarizeStatus(*messages, until_utime));
   if (command == "codec")
     lines = lan::CodecFigureLines(lan::RecodeMapMessages(*messages, lan::DefaultCodecVariants()));
   if (command == "changes") lines = lan::ChangeCostFigureLines(lan::MeasureChangeCost(*messages));

@@ -23,7 +23,7 @@ core::OccupancyGrid ResampleMap(const core::OccupancyGrid& fine, int factor) {
           ++cells;
         }
       }
-      const core::CellState s = occupied > 0      ? core::CellState::kOccupied
+      const core::CellState s = occupied > 0        ? core::CellState::kOccupied
                                 : 2 * free >= cells ? core::CellState::kFree
                                                     : core::CellState::kUnknown;
       coarse.SetState({cx, cy}, s);

@@ -8,10 +8,9 @@ namespace {
 
 // Agent counters summed over the fleet: what the experiment reports per run.
 constexpr const char* kSummedAgentCounters[] = {
-    "tempmaps_closed", "tempmaps_dropped", "tempmaps_pending", "tiles_sent",
-    "tiles_resent",    "maps_merged",      "maps_rejected",    "maps_duplicate",
-    "acks",            "scans",            "scans_skipped",    "map_versions_applied",
-    "keyframe_requests"};
+    "tempmaps_closed", "tempmaps_dropped",     "tempmaps_pending", "tiles_sent", "tiles_resent",
+    "maps_merged",     "maps_rejected",        "maps_duplicate",   "acks",       "scans",
+    "scans_skipped",   "map_versions_applied", "keyframe_requests"};
 
 }  // namespace
 
