@@ -10,7 +10,9 @@
 #include <cstring>
 #include <string>
 #include <thread>
+#include <type_traits>
 
+#include "core/number_text.h"
 #include "core/version.h"
 #include "tools/sickemu/s300_output.h"
 #include "tools/sickemu/scan_source.h"
@@ -37,7 +39,19 @@ struct Args {
   fleetmap::sickemu::EmulatorOptions emulator;
 };
 
+// False on a usage error, after saying which flag was wrong when it was a value.
 bool Parse(int argc, char** argv, Args& a) {
+  using fleetmap::core::ParseCount;
+  using fleetmap::core::ParseNumber;
+  bool values_ok = true;
+  auto take = [&](const auto& parsed, auto& into) {
+    if (parsed.ok()) {
+      into = static_cast<std::remove_reference_t<decltype(into)>>(*parsed);
+      return;
+    }
+    std::fprintf(stderr, "fleetmap-sick-emulator: %s\n", parsed.status().message().c_str());
+    values_ok = false;
+  };
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
     auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -46,21 +60,21 @@ bool Parse(int argc, char** argv, Args& a) {
     else if (k == "--replay")
       a.replay = value();
     else if (k == "--vehicle")
-      a.vehicle = std::stoul(value());
+      take(ParseCount(value(), k, 1000), a.vehicle);
     else if (k == "--loop")
       a.loop = true;
     else if (k == "--port")
-      a.emulator.port = std::stoi(value());
+      take(ParseCount(value(), k, 65535), a.emulator.port);
     else if (k == "--bind")
       a.emulator.bind_address = value();
     else if (k == "--speed")
-      a.emulator.speed_factor = std::stod(value());
+      take(ParseNumber(value(), k), a.emulator.speed_factor);
     else if (k == "--require-login")
       a.emulator.require_login = true;
     else if (k == "--s300-out")
       a.s300_out = value();
     else if (k == "--count")
-      a.count = std::stoul(value());
+      take(ParseCount(value(), k, 100000000), a.count);
     else if (k == "--protocol") {
       auto p = fleetmap::drivers::sick::ParseColaProtocol(value());
       if (!p.ok()) return std::fprintf(stderr, "%s\n", p.status().ToString().c_str()), false;
@@ -69,7 +83,7 @@ bool Parse(int argc, char** argv, Args& a) {
       return false;
     }
   }
-  return a.scenario.empty() != a.replay.empty();
+  return values_ok && a.scenario.empty() != a.replay.empty();
 }
 
 fleetmap::core::Result<std::unique_ptr<fleetmap::sickemu::ScanSource>> MakeSource(const Args& a) {

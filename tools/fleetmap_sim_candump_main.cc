@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/number_text.h"
 #include "core/version.h"
 #include "tools/simcan/sim_can_log.h"
 
@@ -23,28 +24,29 @@ int main(int argc, char** argv) {
   using namespace fleetmap;
   std::string scenario, out, can_yaml;
   simcan::SimCanLogOptions options;
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string k = argv[i];
-      const std::string v = i + 1 < argc ? argv[i + 1] : "";
-      if (k == "--scenario")
-        scenario = v;
-      else if (k == "--out")
-        out = v;
-      else if (k == "--vehicle")
-        options.vehicle = std::stoul(v);
-      else if (k == "--duration")
-        options.duration_s = std::stod(v);
-      else if (k == "--can")
-        can_yaml = v;
-      else if (k == "--interface")
-        options.interface = v;
-      else
-        return std::fputs(kUsage, stderr), 2;
-      ++i;
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    const std::string v = i + 1 < argc ? argv[i + 1] : "";
+    if (k == "--scenario") {
+      scenario = v;
+    } else if (k == "--out") {
+      out = v;
+    } else if (k == "--vehicle") {
+      auto n = core::ParseCount(v, k, 1000);
+      if (!n.ok()) return std::fprintf(stderr, "%s\n", n.status().message().c_str()), 2;
+      options.vehicle = *n;
+    } else if (k == "--duration") {
+      auto d = core::ParseNumber(v, k);
+      if (!d.ok()) return std::fprintf(stderr, "%s\n", d.status().message().c_str()), 2;
+      options.duration_s = *d;
+    } else if (k == "--can") {
+      can_yaml = v;
+    } else if (k == "--interface") {
+      options.interface = v;
+    } else {
+      return std::fputs(kUsage, stderr), 2;
     }
-  } catch (const std::exception&) {
-    return std::fputs(kUsage, stderr), 2;
+    ++i;
   }
   if (scenario.empty() || out.empty()) return std::fputs(kUsage, stderr), 2;
   if (!can_yaml.empty()) {

@@ -46,6 +46,9 @@ rc=$?
 out=$("$bin/fleetmap-eval" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --confirmations 3 2>&1)
 rc=$?
 [[ $rc == 2 && $out == *"--confirmations takes 1 or 2"* ]] || fail "fleetmap-eval took --confirmations 3 (exit $rc): $out"
+out=$("$bin/fleetmap-sick-emulator" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --s300-out "$work/s300.bin" --count -5 2>&1)
+rc=$?
+[[ $rc == 2 && $out == *"--count: not a whole number"* && ! -e $work/s300.bin ]] || fail "sick-emulator took --count -5 (exit $rc): $out"
 pass "options out of range refused"
 
 # 2. Configure: the static map, the fleet key.
