@@ -13,6 +13,7 @@
 #include "aggregator/state_dir_lock.h"
 #include "core/codecs/map_render.h"
 #include "core/map_io.h"
+#include "core/number_text.h"
 #include "core/version.h"
 #include "tools/mapctl/map_edits.h"
 #include "tools/mapctl/merge_summary.h"
@@ -117,20 +118,8 @@ bool HasHelp(const std::vector<std::string>& args) {
   return false;
 }
 
-core::Result<double> ParseNumber(const std::string& text, const std::string& what) {
-  try {
-    size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  return core::InvalidArgument(what + ": not a number: '" + text + "'");
-}
-
 core::Result<uint64_t> ParseVersion(const std::string& text) {
-  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
-    return core::InvalidArgument("not a version (a whole number >= 0): '" + text + "'");
-  return static_cast<uint64_t>(std::stoull(text));
+  return core::ParseCount(text, "version");
 }
 
 double NowS() {
@@ -232,13 +221,13 @@ int ResetRegion(const Args& a) {
   if (rest.size() != 4) return Usage("reset-region takes X0 Y0 X1 Y1 (metres)");
   double v[4];
   for (int i = 0; i < 4; ++i) {
-    auto n = ParseNumber(rest[static_cast<size_t>(i)], "reset-region");
+    auto n = core::ParseNumber(rest[static_cast<size_t>(i)], "reset-region");
     if (!n.ok()) return Usage(n.status().message());
     v[i] = *n;
   }
   double now_s = NowS();
   if (now_text) {
-    auto n = ParseNumber(*now_text, "--now");
+    auto n = core::ParseNumber(*now_text, "--now");
     if (!n.ok()) return Usage(n.status().message());
     now_s = *n;
   }
@@ -262,9 +251,9 @@ core::Result<mapctl::PromoteOptions> PromoteFlags(std::vector<std::string>& rest
   if (auto v = TakeFlag(rest, "--since-version"))
     FLEETMAP_ASSIGN_OR_RETURN(o.since_version, ParseVersion(*v));
   if (auto v = TakeFlag(rest, "--older-than"))
-    FLEETMAP_ASSIGN_OR_RETURN(o.min_age_s, ParseNumber(*v, "--older-than"));
+    FLEETMAP_ASSIGN_OR_RETURN(o.min_age_s, core::ParseNumber(*v, "--older-than"));
   if (auto v = TakeFlag(rest, "--now"))
-    FLEETMAP_ASSIGN_OR_RETURN(o.now_s, ParseNumber(*v, "--now"));
+    FLEETMAP_ASSIGN_OR_RETURN(o.now_s, core::ParseNumber(*v, "--now"));
   FLEETMAP_RETURN_IF_ERROR(o.Validate());
   return o;
 }
