@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/codecs/map_render.h"
+#include "core/number_text.h"
 #include "core/scan_inserter.h"
 #include "core/version.h"
 #include "tools/carmen/carmen_log.h"
@@ -82,45 +83,46 @@ bool Parse(int argc, char** argv, Args& a) {
       else if (arg == "--trajectory")
         a.trajectory = v;
       else if (arg == "--window")
-        a.window_s = std::stod(v);
+        a.window_s = core::NumberOrThrow(v, arg);
       else if (arg == "--map-lifetime")
-        a.lifetime_s = std::stod(v);
+        a.lifetime_s = core::NumberOrThrow(v, arg);
       else if (arg == "--map-size")
-        a.size_m = std::stod(v);
+        a.size_m = core::NumberOrThrow(v, arg);
       else if (arg == "--resolution")
-        a.resolution_m = std::stod(v);
+        a.resolution_m = core::NumberOrThrow(v, arg);
       else if (arg == "--levels")
-        a.levels = std::stoi(v);
+        a.levels = core::IntegerOrThrow(v, arg);
       else if (arg == "--interpolate-odometry")
         a.interpolate_odometry = v != "0";
       else if (arg == "--max-range")
-        a.mapper.max_range_m = std::stod(v);
+        a.mapper.max_range_m = core::NumberOrThrow(v, arg);
       else if (arg == "--prior-xy")
-        a.mapper.matcher.prior_sigma_xy_m = std::stod(v);
+        a.mapper.matcher.prior_sigma_xy_m = core::NumberOrThrow(v, arg);
       else if (arg == "--prior-theta")
-        a.mapper.matcher.prior_sigma_theta_rad = std::stod(v);
+        a.mapper.matcher.prior_sigma_theta_rad = core::NumberOrThrow(v, arg);
       else if (arg == "--sigma-map")
-        a.mapper.matcher.sigma_map = std::stod(v);
+        a.mapper.matcher.sigma_map = core::NumberOrThrow(v, arg);
       else if (arg == "--heading-search")
-        a.mapper.matcher.heading_search_per_rad = std::stod(v);
+        a.mapper.matcher.heading_search_per_rad = core::NumberOrThrow(v, arg);
       else if (arg == "--coarse-iterations")
-        a.mapper.matcher.coarse_iterations = std::stoi(v);
+        a.mapper.matcher.coarse_iterations = core::IntegerOrThrow(v, arg);
       else if (arg == "--fine-iterations")
-        a.mapper.matcher.fine_iterations = std::stoi(v);
+        a.mapper.matcher.fine_iterations = core::IntegerOrThrow(v, arg);
       else if (arg == "--heading-search-base")
-        a.mapper.matcher.heading_search_base_rad = std::stod(v);
+        a.mapper.matcher.heading_search_base_rad = core::NumberOrThrow(v, arg);
       else if (arg == "--update-distance")
-        a.mapper.update_min_distance_m = std::stod(v);
+        a.mapper.update_min_distance_m = core::NumberOrThrow(v, arg);
       else if (arg == "--update-angle")
-        a.mapper.update_min_angle_rad = std::stod(v);
+        a.mapper.update_min_angle_rad = core::NumberOrThrow(v, arg);
       else if (arg == "--rest-distance")
-        a.mapper.rest_max_translation_m = std::stod(v);
+        a.mapper.rest_max_translation_m = core::NumberOrThrow(v, arg);
       else if (arg == "--rest-angle")
-        a.mapper.rest_max_rotation_rad = std::stod(v);
+        a.mapper.rest_max_rotation_rad = core::NumberOrThrow(v, arg);
       else
         return false;
     }
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", e.what());
     return false;
   }
   return !a.carmen.empty() && !a.relations.empty();

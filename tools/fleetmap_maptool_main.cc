@@ -7,6 +7,7 @@
 
 #include "core/codecs/map_render.h"
 #include "core/map_io.h"
+#include "core/number_text.h"
 #include "core/tile_delta.h"
 #include "core/version.h"
 #include "tools/sim/livinglab_map.h"
@@ -47,8 +48,8 @@ std::string Flag(const std::vector<std::string>& args, const std::string& flag,
 core::Result<core::TileOptions> ParseTileOptions(const std::vector<std::string>& args) {
   core::TileOptions o;
   try {
-    o.tile_size_cells = std::stoi(Flag(args, "--tile", "64"));
-    o.codec.level = std::stoi(Flag(args, "--level", "3"));
+    o.tile_size_cells = core::IntegerOrThrow(Flag(args, "--tile", "64"), "--tile");
+    o.codec.level = core::IntegerOrThrow(Flag(args, "--level", "3"), "--level");
   } catch (const std::exception&) {
     return core::InvalidArgument("--tile and --level take whole numbers");
   }

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/number_text.h"
 #include "core/version.h"
 #include "lcmtypes/convert.h"
 #include "tools/simlcm/sim_publisher.h"
@@ -61,13 +62,13 @@ bool Parse(int argc, char** argv, Args& a) {
       else if (arg == "--map" && has_value)
         a.map = argv[++i];
       else if (arg == "--speed" && has_value)
-        a.speed = std::stod(argv[++i]);
+        a.speed = core::NumberOrThrow(argv[++i], arg);
       else if (arg == "--duration" && has_value)
-        a.duration = std::stod(argv[++i]);
+        a.duration = core::NumberOrThrow(argv[++i], arg);
       else if (arg == "--lcm-url" && has_value)
         a.url = argv[++i];
       else if (arg == "--epoch" && has_value)
-        a.epoch = std::stod(argv[++i]);
+        a.epoch = core::NumberOrThrow(argv[++i], arg);
       else if (arg == "--no-truth")
         a.truth = false;
       else if (arg == "--vehicles" && has_value)

@@ -16,6 +16,7 @@
 #include "auth/key.h"
 #include "core/codecs/map_render.h"
 #include "core/map_io.h"
+#include "core/number_text.h"
 
 namespace {
 
@@ -82,7 +83,7 @@ bool Parse(int argc, char** argv, Args& a) {
       } else if (arg == "--final-map" && has_value) {
         a.final_map = argv[++i];
       } else if (arg == "--duration" && has_value) {
-        a.duration_s = std::stod(argv[++i]);
+        a.duration_s = core::NumberOrThrow(argv[++i], arg);
         if (!(a.duration_s >= 0)) throw std::invalid_argument("duration");
       } else if (arg == "--replay" && has_value) {
         while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
