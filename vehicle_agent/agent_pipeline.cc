@@ -9,6 +9,7 @@ core::Status AgentPipelineOptions::Validate() const {
   if (!scanner_in_base.IsFinite())
     return core::InvalidArgument("agent: scanner_in_base is not finite");
   if (first_sequence < 1) return core::InvalidArgument("agent: first_sequence must be >= 1");
+  if (!(max_scan_gap_s > 0)) return core::InvalidArgument("agent: max_scan_gap_s must be > 0");
   FLEETMAP_RETURN_IF_ERROR(localizer.Validate().WithContext("agent.localizer"));
   FLEETMAP_RETURN_IF_ERROR(divergence.Validate().WithContext("agent.divergence"));
   return builder.Validate().WithContext("agent.builder");
@@ -62,9 +63,12 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   const bool valid = scan.Validate().ok();
   const std::optional<double> previous_s = last_scan_stamp_s_;
   if (valid) last_scan_stamp_s_ = scan.stamp_s;
-  if (valid && previous_s && IsClockStepBack(scan.stamp_s, *previous_s) && builder_.building()) {
-    // The clock was set back: a map's times must run forward, so this one closes where the
-    // clock was, and the change goes on in a new one.
+  if (valid && previous_s && builder_.building() &&
+      (IsClockStepBack(scan.stamp_s, *previous_s) ||
+       scan.stamp_s - *previous_s > options_.max_scan_gap_s)) {
+    // The clock was set back (a map's times must run forward) or no scan came for a while
+    // (the map would be bridged blind): this map closes at its last scan, and the change goes
+    // on in a new one.
     step.closed_map = builder_.Close(*previous_s);
     ++counters_.temp_maps_split;
     if (step.divergence.building && !step.divergence.stopped)

@@ -23,6 +23,12 @@ struct AgentPipelineOptions {
   // Sequence number of the first temporary map, >= 1. The agent process continues its
   // numbering across restarts, so that the aggregator never takes a new map for a duplicate.
   int32_t first_sequence = 1;
+  // A temporary map being built when no scan came for longer than this (the agent stalled,
+  // the scanner dropped out) closes at its last scan, and the change goes on in a new map
+  // anchored where localization puts the vehicle now: the matcher would have to bridge the
+  // whole gap blind (1 m at 1 m/s), and one scan put in the wrong place spoils the map.
+  // Seconds, > 0; scans come every 0.02-0.1 s.
+  double max_scan_gap_s = 1.0;
   core::Status Validate() const;
 };
 
@@ -38,7 +44,8 @@ struct AgentCounters {
   int64_t scans = 0;
   int64_t temp_maps_started = 0;
   int64_t temp_maps_closed = 0;
-  int64_t temp_maps_split = 0;  // closed for size or time while the change went on
+  int64_t temp_maps_split = 0;  // closed for size, time, a clock step or a scan gap while the
+                                // change went on
 };
 
 class AgentPipeline {

@@ -127,5 +127,29 @@ TEST(AgentPipelineTest, ScansSkippedForSecondsLoseNoMotion) {
   EXPECT_LT(errors.back(), 0.3);
 }
 
+TEST(AgentPipelineTest, AMapBeingBuiltClosesAtAScanGapAndTheChangeGoesOnInANewOne) {
+  // The pallet is in view from 8 s; no scan between 9.5 and 11 s (odometry goes on).
+  const auto gap = [](double t_s) { return t_s >= 9.5 && t_s < 11.0; };
+  const DriveResult run = Drive(gap);
+  const DriveResult whole = Drive();
+  bool closed_at_gap = false, started_after_gap = false;
+  for (const core::TempMap& m : run.maps) {
+    ASSERT_FALSE(m.trajectory_in_temp.empty());
+    for (size_t i = 1; i < m.trajectory_in_temp.size(); ++i) {
+      EXPECT_LE(m.trajectory_in_temp[i].stamp_s - m.trajectory_in_temp[i - 1].stamp_s, 1.0)
+          << "map " << m.sequence << " bridges a gap";
+    }
+    closed_at_gap |= m.trajectory_in_temp.back().stamp_s < 9.5 && m.end_s < 9.5 &&
+                     m.trajectory_in_temp.back().stamp_s > 9.0;
+    started_after_gap |= m.start_s >= 11.0 && m.start_s < 11.2;
+  }
+  EXPECT_TRUE(closed_at_gap) << "the map being built did not close at its last scan";
+  EXPECT_TRUE(started_after_gap) << "no new map at the first scan after the gap";
+  // Without the gap, one map spans 9.5-11 s: the split is the gap's doing.
+  bool spans = false;
+  for (const core::TempMap& m : whole.maps) spans |= m.start_s < 9.5 && m.end_s >= 11.0;
+  EXPECT_TRUE(spans);
+}
+
 }  // namespace
 }  // namespace fleetmap::vehicle_agent
