@@ -25,6 +25,41 @@ TEST(AggregatorNodeConfigTest, EmptyFileGivesTheDefaults) {
   EXPECT_EQ(c->aggregator.merge.confirmations, 2);
 }
 
+// The packaged configuration says it holds every key with its default: it must, or a site
+// that edits one key inherits stale values for the others.
+TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
+  auto c = LoadProcessConfig(std::string(FLEETMAP_SOURCE_DIR) + "/packaging/etc/aggregator.yaml");
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  const AggregatorProcessConfig d = DefaultProcessConfig();
+  const AggregatorNodeOptions &n = c->node, &nd = d.node;
+  EXPECT_EQ(n.pending_ack_interval_s, nd.pending_ack_interval_s);
+  EXPECT_EQ(n.keyframe_min_interval_s, nd.keyframe_min_interval_s);
+  EXPECT_EQ(n.keyframe_period_s, nd.keyframe_period_s);
+  EXPECT_EQ(n.status_period_s, nd.status_period_s);
+  EXPECT_EQ(n.pending_map_timeout_s, nd.pending_map_timeout_s);
+  EXPECT_EQ(n.max_message_bytes, nd.max_message_bytes);
+  EXPECT_EQ(n.max_report_matches, nd.max_report_matches);
+  EXPECT_EQ(n.max_remembered_rejections, nd.max_remembered_rejections);
+  EXPECT_EQ(n.max_retry_maps, nd.max_retry_maps);
+  EXPECT_EQ(n.assembler.tile_size_cells, nd.assembler.tile_size_cells);
+  EXPECT_EQ(n.assembler.max_pending_maps, nd.assembler.max_pending_maps);
+  EXPECT_EQ(n.assembler.max_map_cells, nd.assembler.max_map_cells);
+  EXPECT_EQ(n.assembler.max_tiles, nd.assembler.max_tiles);
+  const MergeOptions &m = c->aggregator.merge, &md = d.aggregator.merge;
+  EXPECT_EQ(m.add_min_log_odds, md.add_min_log_odds);
+  EXPECT_EQ(m.remove_max_log_odds, md.remove_max_log_odds);
+  EXPECT_EQ(m.static_clearance_cells, md.static_clearance_cells);
+  EXPECT_EQ(m.min_occupied_neighbours, md.min_occupied_neighbours);
+  EXPECT_EQ(m.removal_clearance_cells, md.removal_clearance_cells);
+  EXPECT_EQ(m.confirmations, md.confirmations);
+  EXPECT_EQ(m.confirm_radius_cells, md.confirm_radius_cells);
+  EXPECT_EQ(m.confirm_min_gap_s, md.confirm_min_gap_s);
+  EXPECT_EQ(c->aggregator.store.retained_deltas, d.aggregator.store.retained_deltas);
+  EXPECT_EQ(c->aggregator.store.tiles.tile_size_cells, d.aggregator.store.tiles.tile_size_cells);
+  EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges,
+            d.aggregator.persistence.snapshot_every_merges);
+}
+
 TEST(AggregatorNodeConfigTest, KeysAreReadIntoTheirStructs) {
   auto c = ParseProcessConfig(R"(
 uplink_url: "udpm://239.255.1.1:7000?ttl=1"
