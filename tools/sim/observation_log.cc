@@ -13,8 +13,7 @@ core::CellState CellObservations::LastState() const {
 
 ObservationLog::ObservationLog(size_t num_objects, size_t num_vehicles,
                                const std::vector<int32_t>* raster)
-    : raster_(raster),
-      slot_of_cell_(raster->size(), -1),
+    : slot_of_cell_(raster->size(), -1),
       num_vehicles_(num_vehicles),
       seen_(num_objects * num_vehicles) {
   for (size_t i = 0; i < raster->size(); ++i) {

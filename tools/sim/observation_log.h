@@ -30,6 +30,7 @@ struct ObjectChangeSeen {
 
 class ObservationLog {
  public:
+  // `raster`: World::object_raster(), each cell's object (1-based) or 0; read here only.
   ObservationLog(size_t num_objects, size_t num_vehicles, const std::vector<int32_t>* raster);
 
   void RecordHit(int64_t cell, double t_s);
@@ -46,8 +47,7 @@ class ObservationLog {
   size_t num_vehicles() const { return num_vehicles_; }
 
  private:
-  const std::vector<int32_t>* raster_;  // World::object_raster(), outlives this log
-  std::vector<int32_t> slot_of_cell_;   // index into cells_, -1 for cells of no object
+  std::vector<int32_t> slot_of_cell_;  // index into cells_, -1 for cells of no object
   std::vector<CellObservations> cells_;
   size_t num_vehicles_;
   std::vector<ObjectChangeSeen> seen_;
