@@ -10,6 +10,7 @@
 #include "core/codecs/map_render.h"
 #include "core/file_io.h"
 #include "core/map_io.h"
+#include "core/number_text.h"
 #include "core/version.h"
 #include "tools/eval/agents_pipeline.h"
 #include "tools/eval/eval_figures.h"
@@ -123,11 +124,10 @@ int Fail(const core::Status& s) {
   return 1;
 }
 
-// A number from the command line, or NaN.
+// A number from the command line (core::ParseNumber), or NaN: the checks below name the flag.
 double Number(const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  return end && *end == '\0' && !text.empty() ? v : std::nan("");
+  const core::Result<double> v = core::ParseNumber(text, "");
+  return v.ok() ? *v : std::nan("");
 }
 
 // The numeric options, whichever pipeline uses them: a value out of range is a usage error,
