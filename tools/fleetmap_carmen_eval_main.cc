@@ -42,6 +42,8 @@ options:
   --interpolate-odometry 0|1
                        odometry at each scan's time from the ODOM lines, rather than the
                        last ODOM before it (what FLASER lines carry)  [0]
+  --scan-latency S     each scan was taken S seconds before its time stamp: odometry
+                       interpolated at stamp - S (implies --interpolate-odometry 1)  [0]
   --max-range M        returns farther away are not used          [25]
   --prior-xy M, --prior-theta RAD, --sigma-map P
                        odometry prior (base) and map noise       [0.005, 0.005, 0.25]
@@ -63,6 +65,7 @@ struct Args {
   double window_s = 60, lifetime_s = 0, size_m = 120, resolution_m = 0.05;
   int levels = 3;
   bool interpolate_odometry = false;
+  double scan_latency_s = 0;
   vehicle_agent::LocalMapperOptions mapper;  // matcher and update settings
 };
 
@@ -94,6 +97,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.levels = core::IntegerOrThrow(v, arg);
       else if (arg == "--interpolate-odometry")
         a.interpolate_odometry = v != "0";
+      else if (arg == "--scan-latency")
+        a.scan_latency_s = core::NumberOrThrow(v, arg), a.interpolate_odometry = true;
       else if (arg == "--max-range")
         a.mapper.max_range_m = core::NumberOrThrow(v, arg);
       else if (arg == "--prior-xy")
@@ -222,7 +227,8 @@ int main(int argc, char** argv) {
     return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n",
                         relations.status().ToString().c_str()),
            1;
-  const int interpolated = args.interpolate_odometry ? carmen::InterpolateOdometryAtScans(*log) : 0;
+  const int interpolated =
+      args.interpolate_odometry ? carmen::InterpolateOdometryAtScans(*log, args.scan_latency_s) : 0;
   std::fprintf(stderr,
                "fleetmap-carmen-eval: %s: %zu scans (%d with odometry interpolated at the scan "
                "time), %zu relations\n",

@@ -50,6 +50,19 @@ TEST(CarmenLogTest, OdometryIsInterpolatedAtTheScanTime) {
   EXPECT_EQ(log.lasers[1].odom_pose.x_m, 0.0);           // kept as logged
 }
 
+TEST(CarmenLogTest, AScanTakenBeforeItsStampReadsTheOdometryThen) {
+  CarmenLog log;
+  ASSERT_TRUE(ParseCarmenLine("ODOM 0 0 0 0 0 0 10.0 h 10.0", 1, {}, log).ok());
+  ASSERT_TRUE(ParseCarmenLine("ODOM 0.2 0 0 0 0 0 10.2 h 10.2", 2, {}, log).ok());
+  ASSERT_TRUE(ParseCarmenLine("FLASER 2 1 1 0 0 0 0 0 0 10.15 h 10.15", 3, {}, log).ok());
+  ASSERT_TRUE(ParseCarmenLine("FLASER 2 1 1 0 0 0 0 0 0 10.25 h 10.25", 4, {}, log).ok());
+  EXPECT_EQ(InterpolateOdometryAtScans(log, 0.1), 2);  // read at 10.05 and 10.15
+  EXPECT_NEAR(log.lasers[0].odom_pose.x_m, 0.05, 1e-9);
+  EXPECT_NEAR(log.lasers[1].odom_pose.x_m, 0.15, 1e-9);
+  EXPECT_EQ(InterpolateOdometryAtScans(log, std::nan("")), 0);  // refused, poses kept
+  EXPECT_NEAR(log.lasers[1].odom_pose.x_m, 0.15, 1e-9);
+}
+
 TEST(CarmenLogTest, MalformedLinesNameTheirNumber) {
   CarmenLog log;
   EXPECT_THAT(ParseCarmenLine("FLASER 3 1.0 2.0", 7, {}, log).message(), HasSubstr("line 7"));
