@@ -63,17 +63,17 @@ new_timeouts() {
 # True when every input saved by the last segment is a timeout- that runs alone in time; those
 # are renamed slow-.
 only_load_timeouts() {
-  local known=$1 file
-  (($(count_artifacts) - before == $(new_timeouts "$known" | wc -l))) || return 1
-  [[ -n $(new_timeouts "$known") ]] || return 1
-  while read -r file; do
+  local file fresh
+  mapfile -t fresh < <(new_timeouts "$1")
+  ((${#fresh[@]} > 0 && $(count_artifacts) - before == ${#fresh[@]})) || return 1
+  for file in "${fresh[@]}"; do
     "$binary" -timeout=$timeout_s -rss_limit_mb=2560 "$file" >/dev/null 2>&1 || return 1
-  done < <(new_timeouts "$known")
-  while read -r file; do
+  done
+  for file in "${fresh[@]}"; do
     mv "$file" "$artifacts/slow-${file##*/timeout-}"
     echo "run_fuzzer: $name: ${file##*/} ran alone within ${timeout_s} s: the machine's load," \
       "not a finding; kept as slow-${file##*/timeout-}; resuming" >&2
-  done < <(new_timeouts "$known")
+  done
 }
 
 before=$(count_artifacts)

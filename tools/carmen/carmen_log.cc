@@ -119,14 +119,14 @@ int InterpolateOdometryAtScans(CarmenLog& log, double scan_latency_s) {
   if (odo.size() < 2 || !std::isfinite(scan_latency_s)) return 0;
   int done = 0;
   for (LaserRecord& r : log.lasers) {
-    const double t = r.stamp_s - scan_latency_s;
-    auto it = std::lower_bound(odo.begin(), odo.end(), t,
+    const double taken_s = r.stamp_s - scan_latency_s;
+    auto it = std::lower_bound(odo.begin(), odo.end(), taken_s,
                                [](const OdomRecord& o, double t) { return o.stamp_s < t; });
     if (it == odo.begin() || it == odo.end()) continue;
     const OdomRecord &b = *it, &a = *(it - 1);
     const double span = b.stamp_s - a.stamp_s;
     if (span <= 0 || span > 1.0) continue;  // a gap in the odometry: keep the logged pose
-    const double f = (t - a.stamp_s) / span;
+    const double f = (taken_s - a.stamp_s) / span;
     const core::Pose2 step = core::Between(a.pose, b.pose);
     r.odom_pose = a.pose * core::Pose2(f * step.x_m, f * step.y_m, f * step.theta_rad);
     ++done;
