@@ -9,6 +9,9 @@
 # "agents"), eval.S.paper_mode.* the same with the paper's alignment, eval.S.truthmaps.* the
 # aggregator alone fed perfect temporary maps with anchor errors up to 0.3 m / 3 deg, and
 # eval.S.truthmaps.paper_mode.* the same with the paper's alignment (docs/aggregator.md).
+# Per CARMEN log, real.L.*: the scan matcher and the log's odometry scored by the benchmark's
+# relations, and checks of the relations themselves (real.L.win60.ref_*, .scan_fit_*:
+# fleetmap-carmen-eval --audit, docs/localization.md).
 # FLEETMAP_EVAL_BUILD_DIR (default build-release) picks the Release build folder.
 # Pictures and report.json per scenario and pipeline: out/eval/.
 set -euo pipefail
@@ -67,7 +70,7 @@ done
 for pair in "${logs[@]}"; do
   log=${pair%%:*} rel=${pair#*:}
   echo "run_eval: $log" >&2
-  figures+=$("$build"/bin/fleetmap-carmen-eval --carmen "$log" --relations "$rel" --png "out/eval/$(basename "$log" .rebuilt.clf).png" 2>/dev/null)$'\n'
+  figures+=$("$build"/bin/fleetmap-carmen-eval --carmen "$log" --relations "$rel" --audit 1 --png "out/eval/$(basename "$log" .rebuilt.clf).png" 2>/dev/null)$'\n'
 done
 printf '%s' "$figures"
 {

@@ -13,6 +13,7 @@
 #include "core/scan_inserter.h"
 #include "core/version.h"
 #include "tools/carmen/carmen_log.h"
+#include "tools/carmen/relation_audit.h"
 #include "tools/carmen/relations.h"
 #include "vehicle_agent/local_mapper.h"
 
@@ -57,6 +58,12 @@ options:
   --rest-distance M, --rest-angle RAD
                        odometry steps this small are standing still: the scan is not
                        matched; 0 and 0: match every scan         [0.0001, 0.0001]
+  --audit 0|1          also check the reference itself, within the window: the share of
+                       relations equal to the log's odometry (as read) and, of the others, whose
+                       difference from it is a whole number of 5 cm steps (aces': a search
+                       grid's); and how well each relation's two scans overlap placed by
+                       the reference and by our estimate (or --trajectory's): mean distance of the second
+                       scan's end points to the first's, capped at 0.2 m  [0]
   -h, --help           this text
 )";
 
@@ -64,7 +71,7 @@ struct Args {
   std::string carmen, relations, name, png, trajectory;
   double window_s = 60, lifetime_s = 0, size_m = 120, resolution_m = 0.05;
   int levels = 3;
-  bool interpolate_odometry = false;
+  bool interpolate_odometry = false, audit = false;
   double scan_latency_s = 0;
   vehicle_agent::LocalMapperOptions mapper;  // matcher and update settings
 };
@@ -97,6 +104,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.levels = core::IntegerOrThrow(v, arg);
       else if (arg == "--interpolate-odometry")
         a.interpolate_odometry = v != "0";
+      else if (arg == "--audit")
+        a.audit = v != "0";
       else if (arg == "--scan-latency")
         a.scan_latency_s = core::NumberOrThrow(v, arg), a.interpolate_odometry = true;
       else if (arg == "--max-range")
@@ -203,6 +212,36 @@ void Print(const std::string& name, const std::string& what, const carmen::Relat
                e.rot_std_deg);
 }
 
+// The checks of the reference (relation_audit.h), within the window, for our estimate.
+void PrintAudit(const std::string& name, const std::string& win, const carmen::CarmenLog& log,
+                const std::vector<carmen::Relation>& relations,
+                const std::vector<carmen::TimedPose>& odometry,
+                const std::vector<carmen::TimedPose>& estimate, double window_s) {
+  constexpr double kStep_m = 0.05, kTolerance_m = 0.002;
+  const carmen::LatticeCheck lattice =
+      carmen::CheckLattice(relations, odometry, kStep_m, kTolerance_m, window_s);
+  const carmen::FitComparison fit =
+      carmen::CompareScanFit(relations, log, estimate, carmen::ScanFitOptions{}, window_s);
+  const int differing = lattice.relations - lattice.equal_to_odometry;
+  const auto share = [](int n, int of) { return of > 0 ? static_cast<double>(n) / of : 0.0; };
+  const char* n = name.c_str();
+  const char* w = win.c_str();
+  std::printf("real.%s.%s.ref_equal_odom_share %.3f fraction\n", n, w,
+              share(lattice.equal_to_odometry, lattice.relations));
+  std::printf("real.%s.%s.ref_on_5cm_steps_share %.3f fraction\n", n, w,
+              share(lattice.on_lattice, differing));
+  std::printf("real.%s.%s.scan_fit_ref_m %.4f m\n", n, w, fit.reference_fit_m);
+  std::printf("real.%s.%s.scan_fit_ours_m %.4f m\n", n, w, fit.estimate_fit_m);
+  std::printf("real.%s.%s.ours_fits_better_share %.3f fraction\n", n, w,
+              share(fit.estimate_better, fit.relations));
+  std::fprintf(stderr,
+               "  audit %-6s %5d relations: %d equal to the odometry, %d of the other %d a whole "
+               "number of 5 cm steps from it; scans overlap better placed by ours in %d, by "
+               "the reference in %d (mean distance %.4f vs %.4f m)\n",
+               w, lattice.relations, lattice.equal_to_odometry, lattice.on_lattice, differing,
+               fit.estimate_better, fit.reference_better, fit.estimate_fit_m, fit.reference_fit_m);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -245,6 +284,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "  %s: %zu poses\n", args.trajectory.c_str(), external->size());
     Print(name, "all", carmen::ScoreRelations(*relations, *external));
     Print(name, win, carmen::ScoreRelations(*relations, *external, args.window_s));
+    if (args.audit) PrintAudit(name, win, *log, *relations, odometry, *external, args.window_s);
     if (args.png.empty()) return 0;
     if (external->size() != log->lasers.size())
       return std::fprintf(stderr, "fleetmap-carmen-eval: --png needs one pose per scan\n"), 1;
@@ -258,6 +298,7 @@ int main(int argc, char** argv) {
   Print(name, win, carmen::ScoreRelations(*relations, matched, args.window_s));
   Print(name, "odom.all", carmen::ScoreRelations(*relations, odometry));
   Print(name, "odom." + win, carmen::ScoreRelations(*relations, odometry, args.window_s));
+  if (args.audit) PrintAudit(name, win, *log, *relations, odometry, matched, args.window_s);
   if (const char* dump = std::getenv("FLEETMAP_DUMP_TRAJECTORY")) {
     if (FILE* f = std::fopen(dump, "w")) {
       for (const auto& p : matched)

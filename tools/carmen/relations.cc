@@ -9,21 +9,6 @@
 namespace fleetmap::carmen {
 namespace {
 
-// The pose whose time stamp is nearest `t`, if within 1 ms. Nearest, not the first within
-// 1 ms: intel's scans come in bursts, two of them 1.0-1.3 ms apart, and the earlier one is a
-// scan period of motion away from the one the relation names.
-const core::Pose2* Find(const std::vector<TimedPose>& trajectory, double t) {
-  constexpr double kTolerance_s = 1e-3;
-  auto it = std::lower_bound(trajectory.begin(), trajectory.end(), t,
-                             [](const TimedPose& p, double v) { return p.stamp_s < v; });
-  if (it != trajectory.begin() &&
-      (it == trajectory.end() || t - std::prev(it)->stamp_s < it->stamp_s - t)) {
-    --it;
-  }
-  if (it == trajectory.end() || std::abs(it->stamp_s - t) > kTolerance_s) return nullptr;
-  return &it->pose;
-}
-
 void MeanStd(const std::vector<double>& v, double& mean, double& std) {
   mean = std = 0.0;
   if (v.empty()) return;
@@ -34,6 +19,20 @@ void MeanStd(const std::vector<double>& v, double& mean, double& std) {
 }
 
 }  // namespace
+
+// Nearest, not the first within 1 ms: intel's scans come in bursts, two of them 1.0-1.3 ms
+// apart, and the earlier one is a scan period of motion away from the one the relation names.
+const TimedPose* NearestInTime(const std::vector<TimedPose>& trajectory, double t) {
+  constexpr double kTolerance_s = 1e-3;
+  auto it = std::lower_bound(trajectory.begin(), trajectory.end(), t,
+                             [](const TimedPose& p, double v) { return p.stamp_s < v; });
+  if (it != trajectory.begin() &&
+      (it == trajectory.end() || t - std::prev(it)->stamp_s < it->stamp_s - t)) {
+    --it;
+  }
+  if (it == trajectory.end() || std::abs(it->stamp_s - t) > kTolerance_s) return nullptr;
+  return &*it;
+}
 
 core::Result<std::vector<Relation>> ReadRelations(const std::string& path) {
   std::ifstream in(path);
@@ -80,12 +79,12 @@ RelationErrors ScoreRelations(const std::vector<Relation>& relations,
   std::vector<double> trans, rot;
   for (const Relation& r : relations) {
     if (std::abs(r.t2_s - r.t1_s) > max_span_s) continue;
-    const core::Pose2 *a = Find(trajectory, r.t1_s), *b = Find(trajectory, r.t2_s);
+    const TimedPose *a = NearestInTime(trajectory, r.t1_s), *b = NearestInTime(trajectory, r.t2_s);
     if (!a || !b) {
       ++e.missing;
       continue;
     }
-    const core::Pose2 error = core::Between(r.delta, core::Between(*a, *b));
+    const core::Pose2 error = core::Between(r.delta, core::Between(a->pose, b->pose));
     trans.push_back(std::hypot(error.x_m, error.y_m));
     rot.push_back(std::abs(error.theta_rad) * 180.0 / M_PI);
   }

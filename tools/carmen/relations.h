@@ -30,6 +30,10 @@ struct TimedPose {
 // time as ScoreRelations wants it. InvalidArgument names a malformed line.
 core::Result<std::vector<TimedPose>> ReadTrajectory(const std::string& path);
 
+// The pose whose time stamp is nearest `t`, if within 1 ms; nullptr otherwise. `trajectory`
+// sorted by time.
+const TimedPose* NearestInTime(const std::vector<TimedPose>& trajectory, double t);
+
 struct RelationErrors {
   int used = 0;     // relations scored
   int missing = 0;  // relations whose time stamps are not in the trajectory
