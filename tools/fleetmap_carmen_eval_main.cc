@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +39,9 @@ options:
   --trajectory FILE    score the trajectory in FILE (lines `t x y theta`, e.g. another SLAM
                        system's) with the same relations instead of running our matcher;
                        with --png, FILE must hold one pose per scan
+  --save-trajectory FILE
+                       write our estimated pose at every scan to FILE, in the lines
+                       --trajectory reads
   --interpolate-odometry 0|1
                        odometry at each scan's time from the ODOM lines, rather than the
                        last ODOM before it (what FLASER lines carry)  [0]
@@ -68,7 +70,7 @@ options:
 )";
 
 struct Args {
-  std::string carmen, relations, name, png, trajectory;
+  std::string carmen, relations, name, png, trajectory, save_trajectory;
   double window_s = 60, lifetime_s = 0, size_m = 120, resolution_m = 0.05;
   int levels = 3;
   bool interpolate_odometry = false, audit = false;
@@ -92,6 +94,8 @@ bool Parse(int argc, char** argv, Args& a) {
         a.png = v;
       else if (arg == "--trajectory")
         a.trajectory = v;
+      else if (arg == "--save-trajectory")
+        a.save_trajectory = v;
       else if (arg == "--window")
         a.window_s = core::NumberOrThrow(v, arg);
       else if (arg == "--map-lifetime")
@@ -299,13 +303,9 @@ int main(int argc, char** argv) {
   Print(name, "odom.all", carmen::ScoreRelations(*relations, odometry));
   Print(name, "odom." + win, carmen::ScoreRelations(*relations, odometry, args.window_s));
   if (args.audit) PrintAudit(name, win, *log, *relations, odometry, matched, args.window_s);
-  if (const char* dump = std::getenv("FLEETMAP_DUMP_TRAJECTORY")) {
-    if (FILE* f = std::fopen(dump, "w")) {
-      for (const auto& p : matched)
-        std::fprintf(f, "%.6f %.6f %.6f %.6f\n", p.stamp_s, p.pose.x_m, p.pose.y_m,
-                     p.pose.theta_rad);
-      std::fclose(f);
-    }
+  if (!args.save_trajectory.empty()) {
+    const core::Status s = carmen::WriteTrajectory(args.save_trajectory, matched);
+    if (!s.ok()) return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 1;
   }
   std::printf("real.%s.ms_per_scan %.4f ms\n", name.c_str(), ms_per_scan);
   if (!args.png.empty()) {

@@ -36,5 +36,28 @@ TEST(TrajectoryTest, MalformedLinesAndMissingFilesAreErrors) {
   EXPECT_FALSE(ReadTrajectory(::testing::TempDir() + "no_such_trajectory.txt").ok());
 }
 
+TEST(TrajectoryTest, AWrittenTrajectoryReadsBackAndAnUnwritablePathIsAnError) {
+  const std::vector<TimedPose> written = {{1068.123456, core::Pose2(1.5, -2.25, 3.1)},
+                                          {1068.323456, core::Pose2(1.6, -2.2, -3.1)}};
+  const std::string path = ::testing::TempDir() + "written_trajectory.txt";
+  ASSERT_TRUE(WriteTrajectory(path, written).ok());
+  auto read = ReadTrajectory(path);
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  ASSERT_EQ(read->size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR((*read)[i].stamp_s, written[i].stamp_s, 1e-6);
+    EXPECT_NEAR((*read)[i].pose.x_m, written[i].pose.x_m, 1e-6);
+    EXPECT_NEAR((*read)[i].pose.y_m, written[i].pose.y_m, 1e-6);
+    EXPECT_NEAR((*read)[i].pose.theta_rad, written[i].pose.theta_rad, 1e-6);
+  }
+  const core::Status s = WriteTrajectory(::testing::TempDir() + "no_such_folder/t.txt", written);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.ToString().find("no_such_folder"), std::string::npos);
+  // A full disk: the write fails at the flush, and says so.
+  if (std::ifstream("/dev/full")) {
+    EXPECT_FALSE(WriteTrajectory("/dev/full", written).ok());
+  }
+}
+
 }  // namespace
 }  // namespace fleetmap::carmen

@@ -1,7 +1,10 @@
 #include "tools/carmen/relations.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -71,6 +74,19 @@ core::Result<std::vector<TimedPose>> ReadTrajectory(const std::string& path) {
   std::stable_sort(trajectory.begin(), trajectory.end(),
                    [](const TimedPose& a, const TimedPose& b) { return a.stamp_s < b.stamp_s; });
   return trajectory;
+}
+
+core::Status WriteTrajectory(const std::string& path, const std::vector<TimedPose>& trajectory) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) return core::IoError(path + ": cannot create: " + std::strerror(errno));
+  std::fputs("# t x y theta (s, m, m, rad)\n", f);
+  for (const TimedPose& p : trajectory) {
+    std::fprintf(f, "%.6f %.6f %.6f %.6f\n", p.stamp_s, p.pose.x_m, p.pose.y_m, p.pose.theta_rad);
+  }
+  // A full disk shows at the flush or the close, not at each fprintf.
+  const bool failed = std::ferror(f) != 0;
+  if (std::fclose(f) != 0 || failed) return core::IoError(path + ": write failed");
+  return core::OkStatus();
 }
 
 RelationErrors ScoreRelations(const std::vector<Relation>& relations,

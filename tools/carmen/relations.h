@@ -34,6 +34,11 @@ core::Result<std::vector<TimedPose>> ReadTrajectory(const std::string& path);
 // sorted by time.
 const TimedPose* NearestInTime(const std::vector<TimedPose>& trajectory, double t);
 
+// Writes `trajectory` as ReadTrajectory reads it (a comment line, then `t x y theta`, enough
+// digits to round-trip to a micrometre and a microsecond). IoError names what failed (a
+// folder that is not there, a full disk).
+core::Status WriteTrajectory(const std::string& path, const std::vector<TimedPose>& trajectory);
+
 struct RelationErrors {
   int used = 0;     // relations scored
   int missing = 0;  // relations whose time stamps are not in the trajectory
