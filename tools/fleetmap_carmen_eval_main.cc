@@ -61,11 +61,12 @@ options:
                        odometry steps this small are standing still: the scan is not
                        matched; 0 and 0: match every scan         [0.0001, 0.0001]
   --audit 0|1          also check the reference itself, within the window: the share of
-                       relations equal to the log's odometry (as read) and, of the others, whose
-                       difference from it is a whole number of 5 cm steps (aces': a search
-                       grid's); and how well each relation's two scans overlap placed by
-                       the reference and by our estimate (or --trajectory's): mean distance of the second
-                       scan's end points to the first's, capped at 0.2 m  [0]
+                       relations equal to the log's odometry (as read) and, of the others,
+                       whose difference from it is a whole number of 5 cm steps (aces': a
+                       search grid's); and how well each relation's two scans overlap placed
+                       by the reference and by our estimate (or --trajectory's): the mean
+                       distance of the second scan's end points to the first's nearest,
+                       capped at 0.2 m                               [0]
   -h, --help           this text
 )";
 

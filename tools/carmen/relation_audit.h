@@ -28,7 +28,7 @@ struct LatticeCheck {
 
 // The lattice vectors are step * (i, j) for whole i, j (up to 20 steps each way); only their
 // lengths are compared, so the lattice's orientation does not matter. For a continuous
-// difference the share `on_lattice` is what chance gives (fr079: ~10% at 5 cm, 2 mm).
+// difference the share `on_lattice` is what chance gives (fr079: 15% at 5 cm and 2 mm).
 LatticeCheck CheckLattice(const std::vector<Relation>& relations,
                           const std::vector<TimedPose>& odometry, double step_m, double tolerance_m,
                           double max_span_s = std::numeric_limits<double>::infinity());
