@@ -35,6 +35,17 @@ class PointBuckets {
   std::unordered_map<int64_t, std::vector<Eigen::Vector2d>> buckets_;
 };
 
+// ScanFit with `first` already bucketed (a relation scores two poses against the same scan).
+double MeanNearest(const PointBuckets& first, const std::vector<Eigen::Vector2d>& second,
+                   const core::Pose2& second_in_first, double gate_m) {
+  if (second.empty()) return gate_m;
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : second) {
+    sum += first.NearestWithin(second_in_first.Apply(p), gate_m);
+  }
+  return sum / second.size();
+}
+
 bool IsLatticeLength(double length_m, double step_m, double tolerance_m) {
   constexpr int kSteps = 20;
   for (int i = 0; i <= kSteps; ++i) {
@@ -72,16 +83,12 @@ std::vector<Eigen::Vector2d> EndPointsInBase(const LaserRecord& record,
                                              const ScanFitOptions& options) {
   std::vector<Eigen::Vector2d> points;
   const core::LaserScan& scan = record.scan;
-  const double c = std::cos(record.laser_in_base.theta_rad);
-  const double s = std::sin(record.laser_in_base.theta_rad);
   for (size_t i = 0; i < scan.ranges_m.size(); ++i) {
     const double r = scan.ranges_m[i];
     // NaN fails both comparisons; "no return" is at or above range_max_m.
     if (!(r >= options.min_range_m && r <= options.max_range_m && r < scan.range_max_m)) continue;
     const double a = scan.angle(i);
-    const double lx = r * std::cos(a), ly = r * std::sin(a);
-    points.emplace_back(record.laser_in_base.x_m + c * lx - s * ly,
-                        record.laser_in_base.y_m + s * lx + c * ly);
+    points.push_back(record.laser_in_base.Apply({r * std::cos(a), r * std::sin(a)}));
   }
   return points;
 }
@@ -89,16 +96,7 @@ std::vector<Eigen::Vector2d> EndPointsInBase(const LaserRecord& record,
 double ScanFit(const std::vector<Eigen::Vector2d>& first,
                const std::vector<Eigen::Vector2d>& second, const core::Pose2& second_in_first,
                double gate_m) {
-  if (second.empty()) return gate_m;
-  const PointBuckets buckets(first, gate_m);
-  const double c = std::cos(second_in_first.theta_rad), s = std::sin(second_in_first.theta_rad);
-  double sum = 0.0;
-  for (const Eigen::Vector2d& p : second) {
-    const Eigen::Vector2d q(second_in_first.x_m + c * p.x() - s * p.y(),
-                            second_in_first.y_m + s * p.x() + c * p.y());
-    sum += buckets.NearestWithin(q, gate_m);
-  }
-  return sum / second.size();
+  return MeanNearest(PointBuckets(first, gate_m), second, second_in_first, gate_m);
 }
 
 FitComparison CompareScanFit(const std::vector<Relation>& relations, const CarmenLog& log,
@@ -117,8 +115,9 @@ FitComparison CompareScanFit(const std::vector<Relation>& relations, const Carme
     const auto first = EndPointsInBase(log.lasers[s1 - scans.data()], options);
     const auto second = EndPointsInBase(log.lasers[s2 - scans.data()], options);
     const core::Pose2 estimated = core::Between(e1->pose, e2->pose);
-    const double by_reference = ScanFit(first, second, r.delta, options.gate_m);
-    const double by_estimate = ScanFit(first, second, estimated, options.gate_m);
+    const PointBuckets first_buckets(first, options.gate_m);
+    const double by_reference = MeanNearest(first_buckets, second, r.delta, options.gate_m);
+    const double by_estimate = MeanNearest(first_buckets, second, estimated, options.gate_m);
     ++out.relations;
     out.reference_fit_m += by_reference;
     out.estimate_fit_m += by_estimate;

@@ -1,13 +1,13 @@
 #include "tools/carmen/relations.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <sstream>
+
+#include "core/file_io.h"
 
 namespace fleetmap::carmen {
 namespace {
@@ -77,16 +77,12 @@ core::Result<std::vector<TimedPose>> ReadTrajectory(const std::string& path) {
 }
 
 core::Status WriteTrajectory(const std::string& path, const std::vector<TimedPose>& trajectory) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) return core::IoError(path + ": cannot create: " + std::strerror(errno));
-  std::fputs("# t x y theta (s, m, m, rad)\n", f);
+  std::ostringstream text;
+  text << "# t x y theta (s, m, m, rad)\n" << std::fixed << std::setprecision(6);
   for (const TimedPose& p : trajectory) {
-    std::fprintf(f, "%.6f %.6f %.6f %.6f\n", p.stamp_s, p.pose.x_m, p.pose.y_m, p.pose.theta_rad);
+    text << p.stamp_s << ' ' << p.pose.x_m << ' ' << p.pose.y_m << ' ' << p.pose.theta_rad << '\n';
   }
-  // A full disk shows at the flush or the close, not at each fprintf.
-  const bool failed = std::ferror(f) != 0;
-  if (std::fclose(f) != 0 || failed) return core::IoError(path + ": write failed");
-  return core::OkStatus();
+  return core::WriteFileAtomically(path, text.str());
 }
 
 RelationErrors ScoreRelations(const std::vector<Relation>& relations,

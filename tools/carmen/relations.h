@@ -35,8 +35,8 @@ core::Result<std::vector<TimedPose>> ReadTrajectory(const std::string& path);
 const TimedPose* NearestInTime(const std::vector<TimedPose>& trajectory, double t);
 
 // Writes `trajectory` as ReadTrajectory reads it (a comment line, then `t x y theta`, enough
-// digits to round-trip to a micrometre and a microsecond). IoError names what failed (a
-// folder that is not there, a full disk).
+// digits to round-trip to a micrometre and a microsecond), atomically (core::WriteFileAtomically):
+// a folder that is not there or a full disk is an IoError naming the path, and no half file.
 core::Status WriteTrajectory(const std::string& path, const std::vector<TimedPose>& trajectory);
 
 struct RelationErrors {
