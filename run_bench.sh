@@ -2,13 +2,19 @@
 # Builds in Release and runs every benchmark program in bench/, then prints every figure as
 # `name value unit` (the lines our reports read) and writes them to out/bench.json.
 #   ./run_bench.sh [--quick]   --quick: shorter runs, noisier figures, MRPT on intel only
+#   ./run_bench.sh --build-only   installs and builds, runs nothing (what CI checks)
 # Also installs Debian's MRPT (mrpt-apps, libmrpt-obs-dev) for the comparison with MRPT's
 # icp-slam: for this benchmark only, never a dependency of fleetmap (docs/performance.md).
 set -euo pipefail
 cd "$(dirname "$0")"
-if [[ ${1:-} == --help || ${1:-} == -h ]]; then sed -n '2,6p' "$0"; exit 0; fi
-min_time=0.5 scaling_s=60 mrpt_logs=(intel aces)
-[[ ${1:-} == --quick ]] && min_time=0.05 scaling_s=15 mrpt_logs=(intel)
+min_time=0.5 scaling_s=60 mrpt_logs=(intel aces) build_only=0
+case ${1:-} in
+  "") ;;
+  --quick) min_time=0.05 scaling_s=15 mrpt_logs=(intel) ;;
+  --build-only) build_only=1 ;;
+  -h | --help) sed -n '2,7p' "$0"; exit 0 ;;
+  *) echo "run_bench.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+esac
 
 scripts/install_deps.sh
 if ! command -v icp-slam >/dev/null || [[ ! -d /usr/lib/x86_64-linux-gnu/cmake/mrpt-obs ]]; then
@@ -22,6 +28,7 @@ fi
 cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
   -DFLEETMAP_BUILD_BENCH=ON -DFLEETMAP_BUILD_JAR=OFF >/dev/null
 cmake --build build-release -j "$(nproc)" >&2
+((build_only)) && { echo "run_bench: built (build-release/bench)" >&2; exit 0; }
 mkdir -p out/bench
 failed=()  # a program that fails loses its figures, not the others'; the exit status says so
 for program in build-release/bench/*_bench; do

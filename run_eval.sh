@@ -5,6 +5,7 @@
 #   ./run_eval.sh                                            everything shipped
 #   ./run_eval.sh --scenario SCENARIO.yaml [--map MAP.yaml]   your own world
 #   ./run_eval.sh --carmen LOG --relations REL                your own CARMEN log
+#   ./run_eval.sh --build-only                 installs and builds, runs nothing (CI checks it)
 # Per scenario: eval.S.* is the real system (vehicle pipelines + aggregator, pipeline
 # "agents"), eval.S.paper_mode.* the same with the paper's alignment, eval.S.truthmaps.* the
 # aggregator alone fed perfect temporary maps with anchor errors up to 0.3 m / 3 deg, and
@@ -12,19 +13,21 @@
 # Per CARMEN log, real.L.*: the scan matcher and the log's odometry scored by the benchmark's
 # relations, and checks of the relations themselves (real.L.win60.ref_*, .scan_fit_*:
 # fleetmap-carmen-eval --audit, docs/localization.md).
-# FLEETMAP_EVAL_BUILD_DIR (default build-release) picks the Release build folder.
+# FLEETMAP_EVAL_BUILD_DIR (default build-release) picks the Release build folder;
+# FLEETMAP_DATA_DIR (default ../shared/data) holds the real logs, as real/L/L.rebuilt.clf.
 # Pictures and report.json per scenario and pipeline: out/eval/.
 set -euo pipefail
 cd "$(dirname "$0")"
 
-scenario="" map="" carmen="" relations=""
+scenario="" map="" carmen="" relations="" build_only=0
 while (($#)); do
   case $1 in
     --scenario) scenario=${2:?--scenario needs a file}; shift 2 ;;
     --map) map=${2:?--map needs a file}; shift 2 ;;
     --carmen) carmen=${2:?--carmen needs a log}; shift 2 ;;
     --relations) relations=${2:?--relations needs a file}; shift 2 ;;
-    -h | --help) sed -n '2,12p' "$0"; exit 0 ;;
+    --build-only) build_only=1; shift ;;
+    -h | --help) sed -n '2,18p' "$0"; exit 0 ;;
     *) echo "run_eval.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -36,9 +39,10 @@ build=${FLEETMAP_EVAL_BUILD_DIR:-build-release}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
   -DFLEETMAP_BUILD_JAR=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)" --target fleetmap-eval fleetmap-carmen-eval >&2
+((build_only)) && { echo "run_eval: built ($build/bin)" >&2; exit 0; }
 
 worlds=tools/sim/worlds/livinglab
-data=../shared/data/real
+data=${FLEETMAP_DATA_DIR:-../shared/data}/real  # the real logs (FLEETMAP_DATA_DIR)
 scenarios=() logs=()
 if [[ -n $scenario ]]; then
   scenarios=("$scenario")

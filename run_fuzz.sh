@@ -6,4 +6,8 @@
 # Exits non-zero if a target crashed. scripts/fuzz.sh takes more options; docs/fuzzing.md.
 set -euo pipefail
 cd "$(dirname "$0")"
+case ${1:-30} in
+  -h | --help) sed -n '2,6p' "$0"; exit 0 ;;
+  *[!0-9]* | 0) echo "run_fuzz.sh: SECONDS must be a whole number > 0, not '$1' (see --help)" >&2; exit 2 ;;
+esac
 exec scripts/fuzz.sh --seconds "${1:-30}"

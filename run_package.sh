@@ -4,6 +4,7 @@
 #   ./run_package.sh          RelWithDebInfo build in build/ (stripped in the packages), CPack
 #   ./run_package.sh --arm    cross-builds the agent and its unit tests for aarch64, runs the
 #                             tests under qemu-user (scripts/arm_build.sh; prints arm.* lines)
+#   ./run_package.sh --arm --agent-only   only the cross-built agent, checked under qemu-user
 # Environment: FLEETMAP_BUILD_DIR (default build), FLEETMAP_JOBS (build parallelism).
 # Needs no network once scripts/install_deps.sh has run. What is in each package, the
 # systemd units and how to install them: docs/deployment.md.
@@ -12,9 +13,9 @@ cd "$(dirname "$0")"
 
 case ${1:-} in
   "") ;;
-  --arm) exec scripts/arm_build.sh ;;
-  -h | --help) sed -n '2,9p' "$0"; exit 0 ;;
-  *) sed -n '2,9p' "$0" >&2; exit 2 ;;
+  --arm) shift; exec scripts/arm_build.sh "$@" ;;
+  -h | --help) sed -n '2,10p' "$0"; exit 0 ;;
+  *) sed -n '2,10p' "$0" >&2; exit 2 ;;
 esac
 
 build_dir=${FLEETMAP_BUILD_DIR:-build}

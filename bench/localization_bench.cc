@@ -425,7 +425,7 @@ std::vector<Variant> StudyVariants() {
 void PrintRow(const std::string& variant, const std::string& trace, const Score& s) {
   std::printf("%-20s %-12s %6d %6d %4d/%-4d %8.2f %8.2f %8.0f%%\n", variant.c_str(), trace.c_str(),
               s.starts, s.false_starts, s.detected, s.episodes,
-              s.detected ? s.latency_sum_s / s.detected : 0.0, s.latency_max_s,
+              s.detected ? s.latency_sum_s / s.detected : std::nan(""), s.latency_max_s,
               100.0 * s.building_s / std::max(s.duration_s, 1e-9));
 }
 

@@ -1,7 +1,7 @@
 // The seed writer's sources, one function per family of targets. Each adds the seeds of its
 // targets to the corpus: outputs of our own encoders (seeds_transport.cc, seeds_messages.cc,
 // seeds_maps.cc) and, where real recordings exist, extracts of them (seeds_sensors.cc: SICK
-// captures, the candump log and the CARMEN logs of ../shared/data, never copied into the repo).
+// captures, the candump log and the CARMEN logs of the data folder, never copied into the repo).
 #pragma once
 
 #include <filesystem>
@@ -14,7 +14,7 @@ namespace fleetmap::fuzz {
 
 struct SeedInputs {
   std::filesystem::path source_dir;  // the repository (shipped worlds and maps)
-  std::filesystem::path data_dir;    // ../shared/data; may be missing
+  std::filesystem::path data_dir;    // FLEETMAP_DATA_DIR; may be missing
 };
 
 // Real laser scans (SICK recordings and CARMEN logs), a few per file, for the scan messages

@@ -1,5 +1,6 @@
 // fleetmap-fuzz-seeds: writes the seed corpora of the fuzz targets (fuzz/*_fuzz.cc), one
-// folder per target, from our own encoders and from the real recordings in ../shared/data.
+// folder per target, from our own encoders and from the real recordings in the data folder
+// (FLEETMAP_DATA_DIR).
 // The recordings are read where they are and never copied into the repository; without them
 // the corpora hold our own outputs only. The build runs it (fuzz/CMakeLists.txt).
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Seeds of the sensor and log targets, extracted from the real recordings in ../shared/data
+// Seeds of the sensor and log targets, extracted from the real recordings in the data folder
 // (SOURCES.md there says where each file comes from) and completed with our own encoders'
 // telegrams, so that every field the parsers know occurs in some seed.
 #include <zlib.h>

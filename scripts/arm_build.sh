@@ -6,8 +6,11 @@
 #   arm.agent_rss_mb_emulated N (an idle agent on the LivingLab map: qemu-user and the agent)
 #   arm.agent_scan_us_emulated X, x86.agent_scan_us X, arm.scan_time_ratio_emulated R
 #     (bench/agent_bench BM_AgentPipeline: one S300 scan through the whole on-board pipeline,
-#      under qemu-user emulation on this x86 machine: a ratio, not a promise about a real
+#      under qemu-user emulation on the x86 build host: a ratio, not a promise about a real
 #      ARM board)
+#   scripts/arm_build.sh [--agent-only]
+#     --agent-only: only the cross-built fleetmap-agent, its --version and --help under
+#     qemu-user, and arm.agent_binary_bytes (a few minutes: what CI runs on every change).
 # Called by ./run_package.sh --arm. Needs root the first time (apt-get): installs
 # crossbuild-essential-arm64 and qemu-user-static, and adds the arm64 architecture to dpkg
 # so that apt-get can download arm64 packages.
@@ -20,6 +23,13 @@
 # OpenCVConfig.cmake lists every module, so a small config for the two is written here.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+agent_only=0
+case ${1:-} in
+  "") ;;
+  --agent-only) agent_only=1 ;;
+  -h | --help) sed -n '2,16p' "$0"; exit 0 ;;
+  *) echo "arm_build.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+esac
 root=$PWD
 work=$root/out/arm
 sysroot=$work/sysroot
@@ -96,21 +106,36 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DFLEETMAP_BUILD_JAR=OFF -DFLEETMAP_WERROR=OFF >"$work/configure.log"
 tests=(fleetmap_vehicle_agent_test fleetmap_agent_node_test fleetmap_sick_test fleetmap_can_test
        fleetmap_lcmtypes_test)
-cmake --build "$build" -j "$jobs" --target fleetmap-agent "${tests[@]}" agent_bench >"$work/build.log"
+targets=(fleetmap-agent)
+((agent_only)) || targets+=("${tests[@]}" agent_bench)
+cmake --build "$build" -j "$jobs" --target "${targets[@]}" >"$work/build.log" 2>&1 || {
+  tail -n 30 "$work/build.log" >&2
+  echo "arm: the cross build failed (whole log: $work/build.log)" >&2
+  exit 1
+}
+file "$build/bin/fleetmap-agent" | grep -q 'ARM aarch64' || { echo "arm: not an aarch64 binary" >&2; exit 1; }
+${triplet}-strip -o "$work/fleetmap-agent" "$build/bin/fleetmap-agent"
+if ((agent_only)); then
+  "$work/qemu-run" "$build/bin/fleetmap-agent" --version | grep -q . ||
+    { echo "arm: fleetmap-agent --version printed nothing under qemu" >&2; exit 1; }
+  "$work/qemu-run" "$build/bin/fleetmap-agent" --help >/dev/null ||
+    { echo "arm: fleetmap-agent --help failed under qemu" >&2; exit 1; }
+  echo "arm.agent_binary_bytes $(stat -c %s "$work/fleetmap-agent")"
+  exit 0
+fi
 
 # 5. The unit tests under qemu (gtest's discovery and ctest run them through qemu-run).
 # AgentProcessTest starts the fleetmap-agent binary with exec(): an aarch64 binary runs only
-# where binfmt_misc hands it to qemu, which this machine (no systemd, binfmt_misc not
-# mounted) does not; those tests are left out. Not built here: NOT_BUILT placeholders, and
-# the scripts' tests (vcan VMs, fleets, LAN experiments, packages), which are x86 runs.
+# where binfmt_misc hands it to qemu, which a host without binfmt_misc mounted does not;
+# those tests are left out. Not built here: NOT_BUILT placeholders, and the scripts' tests
+# (vcan VMs, fleets, LAN experiments, packages), which are x86 runs.
 excluded='AgentProcessTest|NOT_BUILT|vcan|fleet_|lan_|package_|operations_'
 ctest --test-dir "$build" -j "$jobs" --timeout 900 -E "$excluded" >"$work/ctest.log" 2>&1 || true
 passed=$(grep -cE 'Test +#[0-9]+: .* Passed' "$work/ctest.log" || true)
 failed=$(grep -cE 'Test +#[0-9]+: .*(\*\*\*|Failed|Exception|Timeout)' "$work/ctest.log" || true)
 echo "arm.tests_passed $passed"
 echo "arm.tests_failed $failed"
-file "$build/bin/fleetmap-agent" | grep -q 'ARM aarch64' || { echo "arm: not an aarch64 binary" >&2; exit 1; }
-${triplet}-strip -o "$work/fleetmap-agent" "$build/bin/fleetmap-agent"
+((passed + failed > 0)) || { echo "arm: no test ran under qemu ($work/ctest.log)" >&2; exit 1; }
 echo "arm.agent_binary_bytes $(stat -c %s "$work/fleetmap-agent")"
 
 # 6. Resident memory of an idle agent holding the LivingLab map (peak VmHWM after 6 s). Under
@@ -138,6 +163,7 @@ x86_build=${FLEETMAP_BUILD_DIR:-build}
 cmake --build "$x86_build" -j "$jobs" --target agent_bench >/dev/null
 x86=$(scan_us "$x86_build/bench/agent_bench")
 arm=$(scan_us "$work/qemu-run" "$build/bench/agent_bench")
+[[ -n $x86 && -n $arm ]] || { echo "arm: BM_AgentPipeline gave no time (x86 '$x86', arm '$arm')" >&2; exit 1; }
 echo "x86.agent_scan_us $x86"
 echo "arm.agent_scan_us_emulated $arm"
 awk -v a="$arm" -v x="$x86" 'BEGIN { if (x > 0) printf "arm.scan_time_ratio_emulated %.1f\n", a / x }'

@@ -18,12 +18,17 @@
 #     --name NAME      name of the figure lines                                 [demo]
 #     --loss P         drop a share P (0..1) of the uplink and downlink packets: the
 #                      fleet then runs in its own network namespace whose loopback drops
-#                      them (tc: HTB + a random classic-BPF filter; netem is not in this
-#                      kernel); the sensor group (on the vehicle) is spared          [0]
+#                      them (tc: HTB + a random classic-BPF filter, for kernels without
+#                      netem); the sensor group (on the vehicle) is spared          [0]
+#     --programs       print the programs this script runs (the build targets run_demo.sh
+#                      builds), one a line, and exit
 # Needs multicast on loopback: scripts/setup_multicast.sh (root) sets it up and says why.
 # Exit status: 0 when every step ran and the replay matched; 1 otherwise.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# Every program run below as "$bin/NAME": the one list (run_demo.sh builds it; fleet_test checks
+# it against the script's commands).
+programs=(fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval fleetmap-record)
 scenario=$root/tools/sim/worlds/livinglab/fleet.yaml
 speed=4 duration="" out=out port=7667 bin=$root/build/bin name=demo loss=0
 while [ $# -gt 0 ]; do
@@ -36,11 +41,12 @@ while [ $# -gt 0 ]; do
     --bin) bin=${2:?}; shift 2 ;;
     --name) name=${2:?}; shift 2 ;;
     --loss) loss=${2:?}; shift 2 ;;
-    -h | --help) sed -n '2,24p' "$0"; exit 0 ;;
+    --programs) printf '%s\n' "${programs[@]}"; exit 0 ;;
+    -h | --help) sed -n '2,26p' "$0"; exit 0 ;;
     *) echo "fleet_run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-for p in fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval fleetmap-record; do
+for p in "${programs[@]}"; do
   [ -x "$bin/$p" ] || { echo "fleet_run.sh: $bin/$p is missing: build first" >&2; exit 1; }
 done
 

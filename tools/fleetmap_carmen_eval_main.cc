@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -209,16 +210,35 @@ core::Status DrawMap(const carmen::CarmenLog& log, const std::vector<carmen::Tim
   return core::RenderGridToPng(grid, path);
 }
 
-void Print(const std::string& name, const std::string& what, const carmen::RelationErrors& e) {
+// Scores `trajectory` by the relations spanning at most `max_span_s` and prints the figures
+// real.NAME.WHAT.*; false, with the reason on stderr, when no relation could be scored (a
+// mean over nothing is not a figure).
+bool Score(const std::string& name, const std::string& what,
+           const std::vector<carmen::Relation>& relations,
+           const std::vector<carmen::TimedPose>& trajectory,
+           double max_span_s = std::numeric_limits<double>::infinity()) {
+  const carmen::RelationErrors e = carmen::ScoreRelations(relations, trajectory, max_span_s);
+  if (const core::Status s = carmen::CheckScored(e, relations, trajectory, max_span_s); !s.ok()) {
+    std::fprintf(stderr, "fleetmap-carmen-eval: %s: %s\n", what.c_str(), s.ToString().c_str());
+    return false;
+  }
   std::printf("real.%s.%s.trans_mean_m %.4f m\n", name.c_str(), what.c_str(), e.trans_mean_m);
   std::printf("real.%s.%s.rot_mean_deg %.3f deg\n", name.c_str(), what.c_str(), e.rot_mean_deg);
+  std::printf("real.%s.%s.missing_share %.3f fraction\n", name.c_str(), what.c_str(),
+              e.missing_share());
   std::fprintf(stderr, "  %-12s %5d relations (%d missing): %.4f +- %.4f m, %.3f +- %.3f deg\n",
                what.c_str(), e.used, e.missing, e.trans_mean_m, e.trans_std_m, e.rot_mean_deg,
                e.rot_std_deg);
+  if (e.missing_share() > 0.5)
+    std::fprintf(stderr,
+                 "  %-12s warning: %d of %d relations have no scan at their time stamps: the "
+                 "figures cover a minority of the log\n",
+                 what.c_str(), e.missing, e.used + e.missing);
+  return true;
 }
 
 // The checks of the reference (relation_audit.h), within the window, for our estimate.
-void PrintAudit(const std::string& name, const std::string& win, const carmen::CarmenLog& log,
+bool PrintAudit(const std::string& name, const std::string& win, const carmen::CarmenLog& log,
                 const std::vector<carmen::Relation>& relations,
                 const std::vector<carmen::TimedPose>& odometry,
                 const std::vector<carmen::TimedPose>& estimate, double window_s) {
@@ -227,14 +247,22 @@ void PrintAudit(const std::string& name, const std::string& win, const carmen::C
       carmen::CheckLattice(relations, odometry, kStep_m, kTolerance_m, window_s);
   const carmen::FitComparison fit =
       carmen::CompareScanFit(relations, log, estimate, carmen::ScanFitOptions{}, window_s);
+  if (lattice.relations == 0 || fit.relations == 0) {
+    std::fprintf(stderr, "fleetmap-carmen-eval: --audit: no relation within %.0f s to check\n",
+                 window_s);
+    return false;
+  }
   const int differing = lattice.relations - lattice.equal_to_odometry;
-  const auto share = [](int n, int of) { return of > 0 ? static_cast<double>(n) / of : 0.0; };
+  const auto share = [](int n, int of) {
+    return of > 0 ? static_cast<double>(n) / of : std::numeric_limits<double>::quiet_NaN();
+  };
   const char* n = name.c_str();
   const char* w = win.c_str();
   std::printf("real.%s.%s.ref_equal_odom_share %.3f fraction\n", n, w,
               share(lattice.equal_to_odometry, lattice.relations));
-  std::printf("real.%s.%s.ref_on_5cm_steps_share %.3f fraction\n", n, w,
-              share(lattice.on_lattice, differing));
+  if (differing > 0)  // else every relation is the odometry's: no step to measure
+    std::printf("real.%s.%s.ref_on_5cm_steps_share %.3f fraction\n", n, w,
+                share(lattice.on_lattice, differing));
   std::printf("real.%s.%s.scan_fit_ref_m %.4f m\n", n, w, fit.reference_fit_m);
   std::printf("real.%s.%s.scan_fit_ours_m %.4f m\n", n, w, fit.estimate_fit_m);
   std::printf("real.%s.%s.ours_fits_better_share %.3f fraction\n", n, w,
@@ -245,6 +273,7 @@ void PrintAudit(const std::string& name, const std::string& win, const carmen::C
                "the reference in %d (mean distance %.4f vs %.4f m)\n",
                w, lattice.relations, lattice.equal_to_odometry, lattice.on_lattice, differing,
                fit.estimate_better, fit.reference_better, fit.estimate_fit_m, fit.reference_fit_m);
+  return true;
 }
 
 }  // namespace
@@ -287,9 +316,11 @@ int main(int argc, char** argv) {
                           external.status().ToString().c_str()),
              1;
     std::fprintf(stderr, "  %s: %zu poses\n", args.trajectory.c_str(), external->size());
-    Print(name, "all", carmen::ScoreRelations(*relations, *external));
-    Print(name, win, carmen::ScoreRelations(*relations, *external, args.window_s));
-    if (args.audit) PrintAudit(name, win, *log, *relations, odometry, *external, args.window_s);
+    if (!Score(name, "all", *relations, *external) ||
+        !Score(name, win, *relations, *external, args.window_s))
+      return 1;
+    if (args.audit && !PrintAudit(name, win, *log, *relations, odometry, *external, args.window_s))
+      return 1;
     if (args.png.empty()) return 0;
     if (external->size() != log->lasers.size())
       return std::fprintf(stderr, "fleetmap-carmen-eval: --png needs one pose per scan\n"), 1;
@@ -297,13 +328,22 @@ int main(int argc, char** argv) {
     if (!s.ok()) return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 1;
     return 0;
   }
+  // The matcher gives a pose at every scan's stamp, as the odometry does: relations that the
+  // odometry cannot be scored by, the matcher cannot either; said before minutes of matching.
+  for (const double span_s : {std::numeric_limits<double>::infinity(), args.window_s}) {
+    const core::Status s = carmen::CheckScored(carmen::ScoreRelations(*relations, odometry, span_s),
+                                               *relations, odometry, span_s);
+    if (!s.ok()) return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 1;
+  }
   double ms_per_scan = 0;
   const auto matched = RunMatcher(*log, args, ms_per_scan);
-  Print(name, "all", carmen::ScoreRelations(*relations, matched));
-  Print(name, win, carmen::ScoreRelations(*relations, matched, args.window_s));
-  Print(name, "odom.all", carmen::ScoreRelations(*relations, odometry));
-  Print(name, "odom." + win, carmen::ScoreRelations(*relations, odometry, args.window_s));
-  if (args.audit) PrintAudit(name, win, *log, *relations, odometry, matched, args.window_s);
+  if (!Score(name, "all", *relations, matched) ||
+      !Score(name, win, *relations, matched, args.window_s) ||
+      !Score(name, "odom.all", *relations, odometry) ||
+      !Score(name, "odom." + win, *relations, odometry, args.window_s))
+    return 1;
+  if (args.audit && !PrintAudit(name, win, *log, *relations, odometry, matched, args.window_s))
+    return 1;
   if (!args.save_trajectory.empty()) {
     const core::Status s = carmen::WriteTrajectory(args.save_trajectory, matched);
     if (!s.ok()) return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 1;

@@ -194,6 +194,13 @@ int WriteResults(const Args& args, const sim::World& world, const sim::Simulator
     if (!s.ok()) return Fail(s);
   }
   const eval::ChangeScores& c = report.changes;
+  if (std::isnan(c.f1)) {  // the files are written (for a look); the figures are not
+    return Fail(core::FailedPrecondition(
+        "no changed cell to score: the truth holds no added or removed cell and the map "
+        "none either (a scenario, or a --duration, in which nothing changed that a scanner "
+        "saw); changed-cell F1 is undefined, see " +
+        out + "/report.md"));
+  }
   Figure(name, "changed_f1", c.f1, "ratio");
   Figure(name, "static_erased", double(c.static_cells_erased), "cells");
   Figure(name, "actor_mapped", double(c.actor_cells_mapped), "cells");

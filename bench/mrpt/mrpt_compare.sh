@@ -28,7 +28,7 @@ while [[ $# -gt 0 ]]; do
 done
 [[ ${#logs[@]} -eq 0 ]] && logs=(intel aces)
 root=$(cd "$(dirname "$0")/../.." && pwd)
-data=$root/../shared/data/real
+data=${FLEETMAP_DATA_DIR:-$root/../shared/data}/real
 for p in "$build/bin/fleetmap-bench-carmen2rawlog" "$build/bin/fleetmap-carmen-eval" "$(command -v icp-slam || echo icp-slam)"; do
   [[ -x $p ]] || { echo "mrpt_compare: $p is missing" >&2; exit 1; }
 done

@@ -4,12 +4,14 @@
 
 #include <map>
 
+#include "tests/support/data_dir.h"
+
 namespace fleetmap::drivers::can {
 namespace {
 
 TEST(CandumpLogTest, ReadsTheRealCarRecording) {
-  const std::string path =
-      std::string(FLEETMAP_SHARED_DATA_DIR) + "/can/SOC_Manual_candump-2022-04-06_125818.log";
+  FLEETMAP_SKIP_WITHOUT_DATA("can/SOC_Manual_candump-2022-04-06_125818.log");
+  const std::string path = testing::DataPath("can/SOC_Manual_candump-2022-04-06_125818.log");
   core::Result<CandumpLog> log = ReadCandumpLog(path);
   ASSERT_TRUE(log.ok()) << log.status().ToString();
   EXPECT_EQ(log->stats.malformed, 0u);

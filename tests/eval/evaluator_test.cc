@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/sim/sim_test_util.h"
 #include "tools/eval/pipeline.h"
 
@@ -149,6 +151,45 @@ TEST_F(EvaluatorTest, ReportJsonHasTheStableKeys) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
   }
   EXPECT_NE(json.find("\"detection.latency_s.median\": null"), std::string::npos);
+}
+
+// A run in which nothing changed has no changed-cell score: F1, precision and recall are
+// undefined (null in report.json), not a perfect 1.
+TEST(EvaluatorNothingChangedTest, ScoresAreUndefinedNotPerfect) {
+  constexpr const char* kStill = R"(
+name: still
+map: room.yaml
+duration_s: 6
+seed: 9
+vehicles:
+  - {id: v1, route: [[1, 3], [9, 3]], loop: true, speed_mps: 1.0}
+)";
+  sim::World world =
+      sim::World::Create(sim::ParseScenario(kStill, "still.yaml").value(), sim::testing::Room())
+          .value();
+  sim::Simulator simulator(&world);
+  auto oracle = MakeOraclePipeline();
+  const RunRecord run = RunScenario(world, *oracle, simulator);
+  const EvalReport r = Evaluate(world, simulator.observations(), run);
+  EXPECT_EQ(r.changes.true_added + r.changes.true_removed, 0);
+  EXPECT_EQ(r.changes.predicted_added + r.changes.predicted_removed, 0);
+  EXPECT_TRUE(std::isnan(r.changes.f1));
+  EXPECT_TRUE(std::isnan(r.changes.precision));
+  EXPECT_TRUE(std::isnan(r.changes.recall));
+  EXPECT_NE(ReportJson(r).find("\"changed_cells.f1\": null"), std::string::npos);
+}
+
+// A map that shows none of the changes scores 0, with its precision undefined.
+TEST_F(EvaluatorTest, AMapWithoutTheChangesScoresZero) {
+  RunRecord blind = run_;
+  blind.final_map = world_->static_map();
+  blind.ever_occupied.clear();
+  const EvalReport r = Score(blind);
+  ASSERT_GT(r.changes.true_added, 0);
+  EXPECT_EQ(r.changes.predicted_added + r.changes.predicted_removed, 0);
+  EXPECT_DOUBLE_EQ(r.changes.f1, 0.0);
+  EXPECT_DOUBLE_EQ(r.changes.recall, 0.0);
+  EXPECT_TRUE(std::isnan(r.changes.precision));
 }
 
 }  // namespace

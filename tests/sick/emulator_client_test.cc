@@ -6,6 +6,7 @@
 
 #include "drivers/sick/scan_telegram_codec.h"
 #include "drivers/sick/scanner_client.h"
+#include "tests/support/data_dir.h"
 #include "tools/sickemu/scan_source.h"
 #include "tools/sickemu/scanner_emulator.h"
 #include "tools/sim/world.h"
@@ -102,8 +103,8 @@ INSTANTIATE_TEST_SUITE_P(BothProtocols, EmulatorClientTest,
                          ::testing::Values(ColaProtocol::kColaA, ColaProtocol::kColaB));
 
 TEST(EmulatorClientTest, ReplaysARealRecordingUnchanged) {
-  const std::string path =
-      std::string(FLEETMAP_SHARED_DATA_DIR) + "/sick/sick_scan_xd/20210302_lms111.pcapng.json";
+  FLEETMAP_SKIP_WITHOUT_DATA("sick/sick_scan_xd/20210302_lms111.pcapng.json");
+  const std::string path = testing::DataPath("sick/sick_scan_xd/20210302_lms111.pcapng.json");
   auto source = sickemu::RecordingScanSource::Load(path, /*loop=*/false);
   ASSERT_TRUE(source.ok()) << source.status().ToString();
   auto recorded = sickemu::RecordingScanSource::Load(path, false);

@@ -1,4 +1,4 @@
-// Every scan telegram recorded from real SICK scanners (../shared/data/sick, SOURCES.md there)
+// Every scan telegram recorded from real SICK scanners (the data folder's sick/, SOURCES.md there)
 // parses, with the device's point count, angles and frequency, correct checksums, and ranges
 // that match values read by hand from the files' hex.
 #include <gtest/gtest.h>
@@ -8,14 +8,13 @@
 
 #include "drivers/sick/scan_conversion.h"
 #include "drivers/sick/scan_telegram_codec.h"
+#include "tests/support/data_dir.h"
 #include "tools/sickemu/recording_reader.h"
 
 namespace fleetmap::drivers::sick {
 namespace {
 
-std::string SickData(const std::string& file) {
-  return std::string(FLEETMAP_SHARED_DATA_DIR) + "/sick/" + file;
-}
+std::string SickData(const std::string& file) { return testing::DataPath("sick/" + file); }
 
 struct DeviceFacts {
   const char* file;
@@ -45,6 +44,7 @@ class RecordingsTest : public ::testing::TestWithParam<DeviceFacts> {};
 
 TEST_P(RecordingsTest, EveryScanParsesWithTheDevicesGeometry) {
   const DeviceFacts& d = GetParam();
+  FLEETMAP_SKIP_WITHOUT_DATA(std::string("sick/") + d.file);
   core::Result<sickemu::Recording> recording = sickemu::ReadRecording(SickData(d.file));
   ASSERT_TRUE(recording.ok()) << recording.status().ToString();
   EXPECT_EQ(recording->framing.bad_checksums, 0u);
@@ -79,19 +79,33 @@ TEST_P(RecordingsTest, EveryScanParsesWithTheDevicesGeometry) {
 INSTANTIATE_TEST_SUITE_P(RealScanners, RecordingsTest, ::testing::ValuesIn(kDevices),
                          [](const auto& info) { return "Device" + std::to_string(info.index); });
 
-// The first scan of each file, with values read by hand from its hex dump.
-ScanTelegram FirstScan(const std::string& file) {
-  core::Result<sickemu::Recording> recording = sickemu::ReadRecording(SickData(file));
-  EXPECT_TRUE(recording.ok());
-  const auto scans = sickemu::ScanTelegrams(*recording);
-  EXPECT_FALSE(scans.empty());
-  core::Result<ScanTelegram> t = ParseScanTelegram(scans.front().payload, scans.front().protocol);
-  EXPECT_TRUE(t.ok()) << t.status().ToString();
-  return t.ok() ? *t : ScanTelegram();
-}
+// The first scan of each file, with values read by hand from its hex dump. Skips when the
+// recording is absent; a recording that does not parse fails the test (never read further).
+class RecordingsSpotCheckTest : public ::testing::Test {
+ protected:
+  // Fills *t with the first scan of `file`; the caller returns when it fails or skips.
+  void FirstScan(const std::string& file, ScanTelegram* t) {
+    FLEETMAP_SKIP_WITHOUT_DATA("sick/" + file);
+    core::Result<sickemu::Recording> recording = sickemu::ReadRecording(SickData(file));
+    ASSERT_TRUE(recording.ok()) << recording.status().ToString();
+    const auto scans = sickemu::ScanTelegrams(*recording);
+    ASSERT_FALSE(scans.empty());
+    core::Result<ScanTelegram> parsed =
+        ParseScanTelegram(scans.front().payload, scans.front().protocol);
+    ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+    ASSERT_NE(parsed->FindChannel("DIST1"), nullptr);
+    *t = std::move(parsed).value();
+  }
+};
 
-TEST(RecordingsSpotCheckTest, Lms111RangesAndHeader) {
-  const ScanTelegram t = FirstScan("sick_scan_xd/20210302_lms111.pcapng.json");
+// Reads the first scan of FILE into `t`, or leaves the test (skipped or failed).
+#define FIRST_SCAN_OR_RETURN(file) \
+  ScanTelegram t;                  \
+  FirstScan(file, &t);             \
+  if (IsSkipped() || HasFatalFailure()) return
+
+TEST_F(RecordingsSpotCheckTest, Lms111RangesAndHeader) {
+  FIRST_SCAN_OR_RETURN("sick_scan_xd/20210302_lms111.pcapng.json");
   EXPECT_EQ(t.serial_number, 18090362u);  // 01 14 09 7A
   EXPECT_EQ(t.scan_counter, 4u);
   const ScanChannel& d = *t.FindChannel("DIST1");
@@ -107,8 +121,8 @@ TEST(RecordingsSpotCheckTest, Lms111RangesAndHeader) {
   EXPECT_FALSE(t.event.has_value());
 }
 
-TEST(RecordingsSpotCheckTest, Lms511HeaderVersionZeroAnd8BitRssi) {
-  const ScanTelegram t = FirstScan("sick_scan_xd/20210302_lms511.pcapng.json");
+TEST_F(RecordingsSpotCheckTest, Lms511HeaderVersionZeroAnd8BitRssi) {
+  FIRST_SCAN_OR_RETURN("sick_scan_xd/20210302_lms511.pcapng.json");
   EXPECT_EQ(t.version, 0);
   EXPECT_EQ(t.serial_number, 18110550u);
   const ScanChannel& d = *t.FindChannel("DIST1");
@@ -118,8 +132,8 @@ TEST(RecordingsSpotCheckTest, Lms511HeaderVersionZeroAnd8BitRssi) {
   EXPECT_EQ(t.channels8.at(0).content, "RSSI1");
 }
 
-TEST(RecordingsSpotCheckTest, Tim781sRanges) {
-  const ScanTelegram t = FirstScan("sick_scan_xd/20210125-tim781s-scandata.pcapng.json");
+TEST_F(RecordingsSpotCheckTest, Tim781sRanges) {
+  FIRST_SCAN_OR_RETURN("sick_scan_xd/20210125-tim781s-scandata.pcapng.json");
   const ScanChannel& d = *t.FindChannel("DIST1");
   EXPECT_EQ(d.values[0], 1356);
   EXPECT_EQ(d.values[2], 1435);
@@ -127,8 +141,8 @@ TEST(RecordingsSpotCheckTest, Tim781sRanges) {
   EXPECT_EQ(d.values[810], 662);
 }
 
-TEST(RecordingsSpotCheckTest, Tim561ColaANameBlock) {
-  const ScanTelegram t = FirstScan("pysicktim/sim.dat");
+TEST_F(RecordingsSpotCheckTest, Tim561ColaANameBlock) {
+  FIRST_SCAN_OR_RETURN("pysicktim/sim.dat");
   EXPECT_EQ(t.serial_number, 0x1078AAAu);
   EXPECT_EQ(t.time_since_startup_us, 0x3FFD3D6Cu);
   EXPECT_EQ(t.output_status[0], 1);
@@ -146,15 +160,18 @@ TEST(RecordingsSpotCheckTest, Tim561ColaANameBlock) {
   EXPECT_FLOAT_EQ(scan->ranges_m[0], 1.598f);
 }
 
-TEST(RecordingsSpotCheckTest, PcapngSegmentsAreReassembled) {
+TEST_F(RecordingsSpotCheckTest, PcapngSegmentsAreReassembled) {
   // Every 3374-byte telegram arrives as 1448 + 1926 bytes; all 16 come out whole.
+  FLEETMAP_SKIP_WITHOUT_DATA("sick/sick_scan_xd/test.pcapng");
   core::Result<sickemu::Recording> r = sickemu::ReadRecording(SickData("sick_scan_xd/test.pcapng"));
-  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  ASSERT_EQ(sickemu::ScanTelegrams(*r).size(), 16u);
   for (const auto& t : sickemu::ScanTelegrams(*r)) EXPECT_EQ(t.payload.size() + 9, 3374u);
   EXPECT_EQ(r->framing.garbage_bytes, 0u);
 }
 
-TEST(RecordingsSpotCheckTest, RadarColaAStartupIsReadWithoutScans) {
+TEST_F(RecordingsSpotCheckTest, RadarColaAStartupIsReadWithoutScans) {
+  FLEETMAP_SKIP_WITHOUT_DATA("sick/sick_scan_xd/20221018_rms_1xxx_ascii_rms2_objects.pcapng.json");
   core::Result<sickemu::Recording> r = sickemu::ReadRecording(
       SickData("sick_scan_xd/20221018_rms_1xxx_ascii_rms2_objects.pcapng.json"));
   ASSERT_TRUE(r.ok()) << r.status().ToString();

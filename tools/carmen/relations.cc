@@ -106,4 +106,37 @@ RelationErrors ScoreRelations(const std::vector<Relation>& relations,
   return e;
 }
 
+double RelationErrors::missing_share() const {
+  const int in_span = used + missing;
+  return in_span > 0 ? static_cast<double>(missing) / in_span
+                     : std::numeric_limits<double>::quiet_NaN();
+}
+
+core::Status CheckScored(const RelationErrors& errors, const std::vector<Relation>& relations,
+                         const std::vector<TimedPose>& trajectory, double max_span_s) {
+  if (errors.used > 0) return core::OkStatus();
+  std::ostringstream why;
+  why << std::fixed << std::setprecision(3) << "no relation scored: " << relations.size()
+      << " relations";
+  if (std::isfinite(max_span_s)) {
+    why << ", " << errors.missing << " of them spanning at most " << max_span_s << " s";
+  }
+  why << ", none with both time stamps in the trajectory (within 1 ms)";
+  if (!relations.empty()) {
+    double lo = relations.front().t1_s, hi = lo;
+    for (const Relation& r : relations) {
+      lo = std::min({lo, r.t1_s, r.t2_s});
+      hi = std::max({hi, r.t1_s, r.t2_s});
+    }
+    why << "; relations from " << lo << " to " << hi << " s";
+  }
+  if (trajectory.empty()) {
+    why << "; the trajectory is empty";
+  } else {
+    why << "; trajectory from " << trajectory.front().stamp_s << " to " << trajectory.back().stamp_s
+        << " s (" << trajectory.size() << " poses)";
+  }
+  return core::NotFound(why.str());
+}
+
 }  // namespace fleetmap::carmen

@@ -41,9 +41,12 @@ core::Status WriteTrajectory(const std::string& path, const std::vector<TimedPos
 
 struct RelationErrors {
   int used = 0;     // relations scored
-  int missing = 0;  // relations whose time stamps are not in the trajectory
-  double trans_mean_m = 0.0, trans_std_m = 0.0;
+  int missing = 0;  // relations within the span whose time stamps are not in the trajectory
+  double trans_mean_m = 0.0, trans_std_m = 0.0;  // over the `used` relations only
   double rot_mean_deg = 0.0, rot_std_deg = 0.0;
+
+  // Share of the relations within the span that could not be scored; NaN when there were none.
+  double missing_share() const;
 };
 
 // Scores the relations spanning at most `max_span_s` (|t2 - t1|). Trajectory poses are
@@ -51,5 +54,13 @@ struct RelationErrors {
 RelationErrors ScoreRelations(const std::vector<Relation>& relations,
                               const std::vector<TimedPose>& trajectory,
                               double max_span_s = std::numeric_limits<double>::infinity());
+
+// OK when `errors` scored at least one relation. Otherwise its means are over nothing and no
+// figure may be read from them: NotFound with how many relations there were, how many were
+// within `max_span_s`, and the time ranges of the relations and of the trajectory (a log
+// whose stamps are not those its relations were made from, e.g. rewritten ones, matches none).
+core::Status CheckScored(const RelationErrors& errors, const std::vector<Relation>& relations,
+                         const std::vector<TimedPose>& trajectory,
+                         double max_span_s = std::numeric_limits<double>::infinity());
 
 }  // namespace fleetmap::carmen

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fleetmap::eval {
 namespace {
@@ -42,7 +43,19 @@ Matched Match(const Mask& predicted, const Mask& truth, int w, int h, int tolera
   return m;
 }
 
-double Ratio(int64_t num, int64_t den) { return den == 0 ? 1.0 : double(num) / double(den); }
+// A share of nothing is undefined (NaN, null in report.json), never a perfect score.
+double Ratio(int64_t num, int64_t den) {
+  return den == 0 ? std::numeric_limits<double>::quiet_NaN() : double(num) / double(den);
+}
+
+// F1 of the matched predictions and truths. Undefined (NaN) when there was neither a truth
+// nor a prediction; nothing predicted where there was a truth, or only false predictions, is 0.
+double F1(int64_t correct, int64_t predicted, int64_t recalled, int64_t truth) {
+  if (predicted == 0 && truth == 0) return std::numeric_limits<double>::quiet_NaN();
+  const double p = predicted > 0 ? double(correct) / double(predicted) : 0.0;
+  const double r = truth > 0 ? double(recalled) / double(truth) : 0.0;
+  return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
+}
 
 }  // namespace
 
@@ -105,7 +118,8 @@ ChangeScores ScoreChanges(const sim::World& world, const sim::ObservationLog& ob
   s.removed_recall = Ratio(removed.recalled, removed.truth);
   s.precision = Ratio(added.correct + removed.correct, added.predicted + removed.predicted);
   s.recall = Ratio(added.recalled + removed.recalled, added.truth + removed.truth);
-  s.f1 = s.precision + s.recall > 0 ? 2 * s.precision * s.recall / (s.precision + s.recall) : 0;
+  s.f1 = F1(added.correct + removed.correct, added.predicted + removed.predicted,
+            added.recalled + removed.recalled, added.truth + removed.truth);
 
   // Actor cells: swept by an actor, away from walls and objects, and occupied at some point.
   const Mask swept = ActorSweptCells(world, options.actor_sample_period_s);

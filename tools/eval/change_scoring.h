@@ -18,9 +18,11 @@ struct ChangeScores {
   int64_t predicted_added = 0, predicted_removed = 0;
   int64_t correct_added = 0, correct_removed = 0;    // predictions that match a truth
   int64_t recalled_added = 0, recalled_removed = 0;  // truths that a prediction matches
-  double precision = 1.0, recall = 1.0, f1 = 1.0;    // both kinds together
-  double added_precision = 1.0, added_recall = 1.0;
-  double removed_precision = 1.0, removed_recall = 1.0;
+  // Shares, NaN where undefined: a precision without predictions, a recall without truths,
+  // an F1 without either (a run in which nothing changed scores nothing).
+  double precision = 0.0, recall = 0.0, f1 = 0.0;  // both kinds together
+  double added_precision = 0.0, added_recall = 0.0;
+  double removed_precision = 0.0, removed_recall = 0.0;
   int64_t static_cells_erased = 0;  // occupied in the static map, not in the final map
   int64_t actor_cells_mapped = 0;   // swept by an actor, no object's or wall's, yet occupied
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
+#include <limits>
 #include <optional>
 
 #include "auth/verifier.h"
@@ -314,13 +315,15 @@ double Percentile(std::vector<double> v, double q) {
 
 std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigures& f) {
   std::vector<std::pair<std::string, std::string>> kv;
-  const double span = std::max(f.rate_span_s, 1e-9);
+  // Rates over no time, and a mean over no message, are null (Num of NaN), never 0 or huge.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double span = f.rate_span_s > 0 ? f.rate_span_s : nan;
   for (const auto& [channel, t] : f.traffic)
     kv.emplace_back("fleet.bytes_per_s." + channel, Num(t.bytes / span));
   for (const auto& [channel, t] : f.traffic) {
     kv.emplace_back("fleet.messages_per_s." + channel, Num(t.messages / span));
     kv.emplace_back("fleet.mean_message_bytes." + channel,
-                    Num(t.messages > 0 ? double(t.bytes) / t.messages : 0.0));
+                    Num(t.messages > 0 ? double(t.bytes) / t.messages : nan));
   }
   kv.emplace_back("fleet.wall_span_s", Num(f.wall_span_s));
   kv.emplace_back("fleet.rate_span_s", Num(f.rate_span_s));
@@ -342,12 +345,11 @@ std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigur
   for (const auto& [process, u] : f.agent_usage) {
     rss_kb = std::max(rss_kb, u.max_rss_kb);
     const double wall_s = (u.last_wall_utime - u.first_wall_utime) * 1e-6;
-    if (wall_s < 5.0) continue;
+    if (wall_s < 5.0 || !(f.rate_span_s > 0 && f.wall_span_s > 0)) continue;
     const double cpu_s = (u.last_cpu_us - u.first_cpu_us) * 1e-6;
     cpu_share_sum += cpu_s / wall_s;
     // Simulated seconds in that span: the run's rate span over its wall span.
-    cpu_per_sim_sum +=
-        cpu_s / (wall_s * std::max(f.rate_span_s, 1e-9) / std::max(f.wall_span_s, 1e-9));
+    cpu_per_sim_sum += cpu_s / (wall_s * f.rate_span_s / f.wall_span_s);
     ++agents;
   }
   if (agents > 0) {

@@ -169,9 +169,10 @@ lan_figures_from_status() {
       delivered = v["maps_merged"] + v["maps_rejected"] + v["maps_duplicate"]
       printf "tempmaps_closed %d count\ntempmaps_delivered %d count\n", closed, delivered
       printf "tempmaps_pending %d count\ntempmaps_dropped %d count\n", v["tempmaps_pending"], v["tempmaps_dropped"]
-      printf "tempmaps_delivered_ratio %.4f ratio\n", (closed > 0 ? delivered / closed : 0)
+      # A share of nothing is nan (no map closed, no tile sent), never 0 or 1.
+      printf "tempmaps_delivered_ratio %s ratio\n", (closed > 0 ? sprintf("%.4f", delivered / closed) : "nan")
       printf "tiles_sent %d count\ntiles_resent %d count\n", v["tiles_sent"], v["tiles_resent"]
-      printf "retry_ratio %.4f ratio\n", (v["tiles_sent"] > 0 ? v["tiles_resent"] / v["tiles_sent"] : 0)
+      printf "retry_ratio %s ratio\n", (v["tiles_sent"] > 0 ? sprintf("%.4f", v["tiles_resent"] / v["tiles_sent"]) : "nan")
       printf "scans %d count\nscans_skipped %d count\n", v["scans"], v["scans_skipped"]
       printf "agents_reporting %d count\n", v["count"]
     }' "$1"
