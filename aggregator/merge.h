@@ -1,4 +1,4 @@
-// The merge rules (DESIGN.md, the paper Sec. 3.4): a cell the temporary map observed
+// The merge rules (the paper, Sec. 3.4; docs/aggregator.md): a cell the temporary map observed
 // occupied where the static map is free becomes a semi-static obstacle; a semi-static cell
 // it observed free with enough evidence is removed; static cells never change. Planned in
 // two phases like nav2's layered costmap: the placed map's window bounds the work, then only
@@ -24,8 +24,8 @@ namespace fleetmap::aggregator {
 
 struct MergeOptions {
   // Temporary log-odds at or above this add an obstacle (> 0). 3.0 needs two clean hits
-  // (2.2 each) more than misses: a stray return one cell deep inside a pallet stays out.
-  // (1.5, one hit, added such cells and cost 4% precision on the LivingLab runs.)
+  // (2.2 each) more than misses: a stray return one cell deep inside a pallet stays out,
+  // which one hit (1.5) would add (docs/experiments/2026-12-01-merge-options.md).
   float add_min_log_odds = 3.0f;
   // At or below this a semi-static obstacle is removed (< 0): about five free observations
   // (0.4 each) more than hits.
@@ -41,10 +41,9 @@ struct MergeOptions {
   // at add_min_log_odds and every semi-static cell this close is seen free (< 0) too: the
   // edge of an obstacle that is still there flickers between hit and passed, and a map a
   // little off may see a strip of it free; an obstacle taken away leaves its whole
-  // neighbourhood free. 0..10. 2 rather than 1: on the fleet run the edges of pallets that
-  // stayed (second rows of cells, added from a neighbour's sighting) were removed and added
-  // again, 47 of 211 removals false; with 2 the removal precision rose from 0.78 to 0.93 and
-  // no true removal was lost (docs/aggregator.md).
+  // neighbourhood free. 0..10. 2 rather than 1: with 1 the edges of pallets that stay (second
+  // rows of cells, added from a neighbour's sighting) are removed and added again, and 2 loses
+  // no true removal (docs/aggregator.md, "Change detection of the real system").
   int removal_clearance_cells = 2;
   // Temporary maps of different times that must see a cell occupied before it is added:
   // 1 (the paper: at first sight) or 2 (a candidate first, see above).
@@ -58,8 +57,8 @@ struct MergeOptions {
   // ... and at most this far apart, seconds > confirm_min_gap_s: a pallet is confirmed within
   // the pass that saw it (the vehicles split what they see into maps of 3 s), while a person
   // who walks back and forth comes back to the same place later, and no map need have seen
-  // the place free in between. On the fleet run people's turning points were confirmed by
-  // sightings 26-30 s apart; with 20 s no pallet was lost.
+  // the place free in between: a person's turning point is passed again within half a minute
+  // (docs/aggregator.md, "Change detection of the real system").
   double confirm_max_gap_s = 20.0;
   core::OccupancyThresholds thresholds;  // classify the static map's cells
   core::Status Validate() const;

@@ -3,8 +3,8 @@
 // and only its first row is ever hit: its surface cells are the occupied cells with a free
 // 4-neighbour. A temporary map holds only what its beams hit, spread by the range noise over
 // the cells on both sides of a face; its cells with repeated hits straddle the face and have
-// their centre, measured over the LivingLab runs, within 0.15 cell of the static surface
-// row's (docs/aggregator.md), whatever the angle of view and the grid's own rotation.
+// their centre within a fraction of a cell of the static surface row's (docs/aggregator.md,
+// "Line features"), whatever the angle of view and the grid's own rotation.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 # Debian 12 ships LCM 1.3.1 without a CMake package. Its lcm.pc requires glib's .pc files,
-# which the C++ headers do not need, so we find the header and the library directly
-# (../shared/LCM_NOTES.md). Defines the imported target LCM::lcm and LCM_GEN_EXECUTABLE.
+# which the C++ headers do not need, so we find the header and the library directly.
+# Defines the imported target LCM::lcm and LCM_GEN_EXECUTABLE.
 find_path(LCM_INCLUDE_DIR lcm/lcm-cpp.hpp)
 find_library(LCM_LIBRARY lcm)
 find_program(LCM_GEN_EXECUTABLE lcm-gen)

@@ -1,7 +1,7 @@
 // A grid cut into square tiles, each encoded as its own codec frame: the unit in which maps
 // travel over LCM. One lost UDP packet loses a whole LCM message, so a map goes as many small
-// messages that are each useful alone (../shared/LCM_NOTES.md). A delta is the set of tiles
-// whose packed cells differ between two grids; a keyframe is every tile.
+// messages that are each useful alone (docs/channels.md, "What LCM needs"). A delta is the set of
+// tiles whose packed cells differ between two grids; a keyframe is every tile.
 #pragma once
 
 #include <vector>

@@ -16,7 +16,8 @@ namespace fleetmap::lcmtypes {
 
 // Uplink (vehicles to aggregator), downlink (aggregator to vehicles) and on-vehicle sensor
 // traffic use separate multicast groups, so that nobody receives what it would only drop
-// (../shared/LCM_NOTES.md). ttl=0 keeps traffic on the host; across hosts use ttl=1.
+// (docs/channels.md, "What LCM needs"). ttl=0 keeps traffic on the host; across hosts use
+// ttl=1.
 constexpr const char* kDefaultSensorUrl = "udpm://239.255.76.69:7669?ttl=0";
 constexpr const char* kDefaultUplinkUrl = "udpm://239.255.76.67:7667?ttl=0";
 constexpr const char* kDefaultDownlinkUrl = "udpm://239.255.76.68:7668?ttl=0";

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Prepares this host for LCM UDP multicast on loopback (../shared/LCM_NOTES.md, docs/channels.md):
+# Prepares this host for LCM UDP multicast on loopback (docs/channels.md, "What LCM needs"):
 #  - a route for 224.0.0.0/4: without one, lcm::LCM is not good() ("LCM requires a valid
 #    multicast route"), and on a host with no default route there is none;
 #  - multicast enabled on lo, so that the kernel loops our datagrams back to local sockets;

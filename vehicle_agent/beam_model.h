@@ -26,9 +26,9 @@ struct BeamModelOptions {
   // S300's 2 cm noise: it also absorbs map discretisation (5 cm) and pose error.
   double sigma_hit_m = 0.2;
   double lambda_short_per_m = 0.1;  // decay of the short component, 1/m, > 0 (AMCL)
-  // Use every beam_stride-th beam, >= 1. On the S300 (541 beams) at 2, W_avg is within 1.6%
-  // of all beams' on average (8.7% at most) and moves 2.8% from scan to scan (all beams:
-  // 2.0%, stride 4: 3.9%) for half the ray casting (measured on 120 s of the LivingLab route).
+  // Use every beam_stride-th beam, >= 1. On the S300 (541 beams) 2 halves the ray casting
+  // while W_avg stays close to all beams' and hardly noisier from scan to scan (figures:
+  // docs/localization.md, "Scan likelihood").
   int beam_stride = 2;
   // The model's z_max, m, > 0: readings at or beyond min(this, the scan's range_max_m) are
   // "no return". 30 m is the S300's range.

@@ -20,10 +20,10 @@ enum class DivergenceRule {
   kHysteresis,  // start at d > start_above, stop at d < stop_below, with min/max durations
 };
 
-// Defaults chosen by measurement on the simulator (`localization_bench --divergence_study`,
-// docs/localization.md): the paper's rule opens a temporary map at every flicker of d, 310
-// times in 10 minutes of an unchanged hall; hysteresis at 0.1 / 0.05 opens none there and
-// still catches 20 of 32 changes coming into view (the paper's rule: 26), 2.6 s on average.
+// Defaults chosen by measurement on the simulator (`localization_bench --divergence_study`
+// and the whole system's evaluation, docs/localization.md): the paper's rule opens a
+// temporary map at every flicker of d in an unchanged hall; hysteresis opens few or none there
+// and still catches most changes coming into view.
 struct DivergenceOptions {
   // Per-sample decay rates, 0 <= alpha_slow < alpha_fast <= 1 (the paper: alpha_slow <<
   // alpha_fast). At 25 scans/s the time constants are 1 / (25 alpha): 40 s and 0.4 s. The
@@ -43,12 +43,11 @@ struct DivergenceOptions {
   double rotation_freeze_radps = 0.1;
   DivergenceRule rule = DivergenceRule::kHysteresis;
   // kHysteresis only: start above, stop below, 0 <= stop_below < start_above < 1. d = 0.1
-  // is about 1.6% of the beams contradicting the map (a pallet's face 10 m away); 0.08 gave
-  // 0-2 false starts over runs of the study, 0.05 gave 7-8. 0.05 / 0.025 is what the map
-  // needs: at 0.1 the parked robots of the addition and removal scenarios (small, next to a
-  // wall) never opened a map and removal scored F1 0.67-0.79; at 0.06-0.07 one of three runs
-  // still missed one (0.84); at 0.05 all were seen (0.96-1.0). A false start costs bandwidth,
-  // not map quality: the merge adds nothing a temporary map of an unchanged place holds
+  // is about 1.6% of the beams contradicting the map (a pallet's face 10 m away). Lower
+  // thresholds start more maps in an unchanged hall; higher ones miss small changes next to a
+  // wall (a parked robot), which the map then never holds: 0.05 / 0.025 is what the map needs
+  // (docs/localization.md, "Choosing the rule"). A false start costs bandwidth, not map
+  // quality: the merge adds nothing a temporary map of an unchanged place holds
   // (docs/aggregator.md, "Figures").
   double start_above = 0.05;
   double stop_below = 0.025;
@@ -57,8 +56,8 @@ struct DivergenceOptions {
   // aggregator adds an obstacle once temporary maps of two times (2 s apart) saw it, and the
   // builder closes a map every 3 s (TempMapBuilderOptions), so a change seen once keeps the
   // vehicle mapping through several maps of its pass, until it has passed the object and
-  // seen its far faces (2 s: single-pass changes were lost; 15 s: faces seen only looking
-  // back, addition F1 0.93-0.98 over three runs; 20 s: 0.965-0.98; 25 s mapped more people).
+  // seen its far faces; shorter loses the faces seen only looking back, longer maps more
+  // people (docs/aggregator.md, "Change detection of the real system").
   double min_duration_s = 20.0;
   double max_duration_s = 60.0;
 

@@ -5,10 +5,9 @@
 // (OpenCV, kept in the .cc), so scoring a beam is one table lookup: the particle filter's
 // measurement update. Unlike the book (and AMCL), d is the distance to the obstacle's
 // *surface*, on both sides: an end point inside a thick wall is penalised like one in front
-// of it. With d = 0 everywhere inside walls, particles drift into the walls they see (a
-// 3-6 cm bias on the LivingLab's 20 cm walls, measured in docs/localization.md). It is blind to
-// removed obstacles (a beam through a mapped pallet ends on the wall behind it and scores well);
-// the beam model is not.
+// of it. With d = 0 everywhere inside walls, particles drift into the walls they see (a bias
+// of a few cm on 20 cm walls, docs/localization.md). It is blind to removed obstacles (a beam
+// through a mapped pallet ends on the wall behind it and scores well); the beam model is not.
 #pragma once
 
 #include <Eigen/Core>
@@ -26,10 +25,10 @@ namespace fleetmap::vehicle_agent {
 struct LikelihoodFieldOptions {
   double z_hit = 0.95;   // weight of the Gaussian around the nearest surface, >= 0
   double z_rand = 0.05;  // weight of uniform noise over [0, max_range_m), >= 0; z_hit + z_rand > 0
-  // Standard deviation of the end-point distance, m, > 0. AMCL: 0.2. 0.1 more than halves the
-  // median tracking error on the LivingLab route (1.1 -> 0.44 cm, docs/localization.md):
-  // beams on unmapped pallets 0.5 m or more from any wall then pull the pose no more. The
-  // S300's own noise is 2 cm.
+  // Standard deviation of the end-point distance, m, > 0. AMCL: 0.2. 0.1 tracks better
+  // (docs/localization.md, "Measured: tracking on the paper's route"): beams on unmapped
+  // pallets 0.5 m or more from any wall then pull the pose no more. The S300's own noise is
+  // 2 cm.
   double sigma_hit_m = 0.1;
   double max_distance_m = 2.0;  // distances are clamped to this, m, > 0 (off the map: this)
   int beam_stride = 2;          // Score() uses every beam_stride-th beam, >= 1

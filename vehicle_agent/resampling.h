@@ -19,9 +19,9 @@ ParticleSet LowVarianceResample(const ParticleSet& particles, size_t count, std:
 
 // Defaults: bins as AMCL's pf_kdtree (0.5 m, 0.5 m, 10 deg), epsilon as nav2's pf_err.
 struct KldOptions {
-  // Never fewer particles, >= 1. AMCL: 100 (ROS 1), 500 (nav2). On the LivingLab route 100,
-  // 200 and 500 track alike (median 4.9 / 4.4 / 4.1 mm, docs/localization.md); 200 keeps a
-  // margin for real maps at a sixth of a millisecond per scan.
+  // Never fewer particles, >= 1. AMCL: 100 (ROS 1), 500 (nav2). On the simulator 100, 200 and
+  // 500 track alike (docs/localization.md); 200 keeps a margin for real maps at a sixth of a
+  // millisecond per scan.
   int min_particles = 200;
   // Never more, >= min_particles. Initialisation (around a pose or global) starts with this
   // many; AMCL: 5000 (ROS 1), 2000 (nav2).

@@ -1,8 +1,8 @@
 // The aggregator's two LCM links: it receives on the uplink (TEMPMAP_.*, MAP_REQUEST) and
 // sends on the downlink. Subscriptions are raw: the node decodes inside (lcmtypes::Decode),
 // because LCM's typed subscribe throws out of the handler on malformed data
-// (../shared/LCM_NOTES.md). Nothing subscribes on the downlink, so LCM opens no receive
-// socket there and our own messages are not read back.
+// (docs/channels.md, "What LCM needs"). Nothing subscribes on the downlink, so LCM opens no
+// receive socket there and our own messages are not read back.
 #pragma once
 
 #include <deque>

@@ -1,7 +1,7 @@
-// Per-vehicle bounds of the aggregator (issue 9, part 4): what one vehicle may cost the
-// server, so that a vehicle that floods (a bug, a broken radio, an attacker with a vehicle's
-// key) is throttled while the others are served as before. Each vehicle has two token
-// buckets: tiles received, and complete maps handed to the merge.
+// Per-vehicle bounds of the aggregator: what one vehicle may cost the server, so that a
+// vehicle that floods (a bug, a broken radio, an attacker with a vehicle's key) is throttled
+// while the others are served as before. Each vehicle has two token buckets: tiles received,
+// and complete maps handed to the merge.
 #pragma once
 
 #include <map>
@@ -18,8 +18,8 @@ struct VehicleLimitOptions {
   // Incomplete temporary maps one vehicle may have at once, maps >= 1 (all vehicles
   // together: assembler.max_pending_maps, 32), so one vehicle cannot take every slot. Not
   // much fewer: on a lossy link most maps miss a tile or two and wait for a resend while the
-  // vehicle closes a new one every few seconds (with 4, a 3-vehicle fleet at 30% loss kept
-  // every vehicle at its limit and refused new maps all run long).
+  // vehicle closes a new one every few seconds, so a small limit keeps a vehicle at it and
+  // refuses its new maps (docs/experiments/2026-12-01-lossy-links.md).
   int max_pending_maps_per_vehicle = 16;
   // Tiles one vehicle may send, tiles/s > 0, after a burst of tile_burst (>= 1). A 20 m
   // temporary map is 49 tiles; an agent's uplink pacer sends at most 400 tiles/s.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Side by side with MRPT: MRPT's icp-slam (Debian's mrpt-apps 2.5.8) and our temporary-map
-# builder's scan matcher (fleetmap-carmen-eval) on the same CARMEN logs, on this machine, one
+# builder's scan matcher (fleetmap-carmen-eval) on the same CARMEN logs, on the same host, one
 # run each. Both trajectories are scored with the same benchmark relations by
 # fleetmap-carmen-eval. MRPT reads a rawlog written by fleetmap-bench-carmen2rawlog (the log's
 # own time stamps, the same reader as ours), with bench/mrpt/icp-slam.ini. Checks that MRPT's

@@ -100,7 +100,7 @@ core::Result<SocketCan> SocketCan::Open(const SocketCanOptions& o) {
   const int fd = socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
   if (fd < 0) {
     if (errno == EAFNOSUPPORT || errno == EPROTONOSUPPORT) {
-      return core::Unimplemented("this kernel has no SocketCAN (AF_CAN): " +
+      return core::Unimplemented("the kernel has no SocketCAN (AF_CAN): " +
                                  std::string(std::strerror(errno)));
     }
     return Errno("socket(PF_CAN)");

@@ -1,6 +1,6 @@
-// A vehicle whose clock jumps (issue 9, part 2): the stamps of its scans and odometry jump an
-// hour ahead, then back. Nothing crashes, what the agent does in each phase is counted, and
-// the temporary map it builds is still sent.
+// A vehicle whose clock jumps (docs/reliability.md, "Faults"): the stamps of its scans and
+// odometry jump an hour ahead, then back. Nothing crashes, what the agent does in each phase is
+// counted, and the temporary map it builds is still sent.
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -146,7 +146,7 @@ TEST(SickAgentTest, LocalizesFromAScannerOverTcpAndCarriesOnAfterTheScannerResta
   EXPECT_NE(log[1].find("lost"), std::string::npos);
 }
 
-// Issue 9: the TCP connection to the scanner is cut while the scanner keeps running (a
+// The TCP connection to the scanner is cut while the scanner keeps running (a
 // pulled cable, a switch restart) and restored after outages of different lengths; the
 // agent reconnects each time. How long after the restore the first scan arrives is printed
 // as a figure (not asserted: it depends on where the backoff was), for the agent's default

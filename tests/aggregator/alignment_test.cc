@@ -27,9 +27,10 @@ Residual AlignAndMeasure(const Aggregator& aggregator, const core::TempMap& map,
   return {std::hypot(e.x_m, e.y_m) / testing::kRes, std::abs(e.theta_rad) * 180 / M_PI};
 }
 
-// Anchor errors up to 0.3 m and 3 degrees, as the issue asks, from a few start poses.
+// Anchor errors up to 0.3 m and 3 degrees, which the alignment must correct, from a few start
+// poses.
 std::vector<TempMapSpec> Cases() {
-  // Off the cell boundaries: core::RayCaster can stall on a ray along a boundary (reported).
+  // Off the cell boundaries: core::RayCaster can stall on a ray along a boundary (a known limit).
   const core::Pose2 starts[] = {
       {4.013, 4.027, 0.0}, {15.517, 9.011, M_PI / 2}, {9.021, 16.007, M_PI}};
   const core::Pose2 errors[] = {{0.3, -0.2, 3 * M_PI / 180},

@@ -205,7 +205,7 @@ TEST(MergeOptionsTest, ValidateNamesTheBadField) {
   EXPECT_NE(o.Validate().message().find("confirm_max_gap_s"), std::string::npos);
 }
 
-// The test: a removal clears the pallet but not the wall behind it.
+// The required behaviour: a removal clears the pallet but not the wall behind it.
 TEST(MergeHallTest, RemovalClearsThePalletButNotTheWallBehindIt) {
   using testing::BuildTempMap;
   const core::OccupancyGrid hall = testing::HallMap();

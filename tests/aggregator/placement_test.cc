@@ -103,7 +103,7 @@ TEST_F(BadInputTest, TheGoodMapIsAcceptedAfterAllThat) {
   EXPECT_EQ(aggregator_->store().version(), 1u);
 }
 
-// The test: a featureless temporary map is rejected with its reason.
+// The required behaviour: a featureless temporary map is rejected with its reason.
 TEST_F(BadInputTest, FeaturelessMapIsRejectedWithItsReason) {
   // A big open floor with one pallet in the middle: the vehicle sees no wall.
   core::OccupancyGrid floor(core::GridGeometry(0.05, 400, 400));

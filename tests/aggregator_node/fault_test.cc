@@ -1,4 +1,4 @@
-// Faults of the aggregator's environment (issue 9, part 2): a really full disk (a small
+// Faults of the aggregator's environment (docs/reliability.md): a really full disk (a small
 // tmpfs as the state folder) while it persists merges, and a vehicle whose clock jumps.
 #include <fcntl.h>
 #include <gtest/gtest.h>

@@ -171,7 +171,7 @@ TEST(SocketCanHostTest, OpeningWithoutAfCanSaysWhy) {
   SocketCanOptions o;
   o.interface = "fleetmapnone0";
   core::Result<SocketCan> s = SocketCan::Open(o);
-  ASSERT_FALSE(s.ok());  // either no AF_CAN in this kernel, or no such interface
+  ASSERT_FALSE(s.ok());  // either no AF_CAN in the kernel, or no such interface
   EXPECT_TRUE(s.status().code() == core::StatusCode::kUnimplemented ||
               s.status().code() == core::StatusCode::kNotFound)
       << s.status().ToString();

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the commands of docs/operations.md that can run on this machine (marked
+# Runs the commands of docs/operations.md that can run on a test host (marked
 # "[tested: operations_docs_test]" there), with a scratch folder and private multicast ports:
 # a short simulated run of one vehicle recorded with fleetmap-record, `fleetmap-aggregator
 # --replay` of the recording into a state folder, every fleetmap-mapctl command on it (each

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the Debian packages from a built tree (scripts/make_debs.sh), checks their control
 # data (Depends from dpkg-shlibdeps, conffiles, maintainer scripts), unpacks them into a
-# scratch root with dpkg -x (nothing is installed on this machine), checks every file is
+# scratch root with dpkg -x (nothing is installed on the host), checks every file is
 # where docs/deployment.md says, runs every installed program's --version and --help, checks
 # the systemd units with systemd-analyze verify, and starts the installed agent and
 # aggregator with the installed configuration files for a moment (when multicast works).

@@ -67,7 +67,8 @@ TEST_F(RecordTest, BurstBeyondLcmDefaultQueueIsRecordedWholeAndInOrder) {
   lcm::LCM lcm(kUrl);
   ASSERT_TRUE(lcm.good());
   // 3000 x 200 B fits the 8 MB receive buffer, so the kernel drops nothing; LCM's default
-  // queue of 30 would (lcm-logger keeps about 250 of such a burst on this machine).
+  // queue of 30 would (lcm-logger kept about 250 of such a burst on a 2-core x86_64 virtual
+  // machine).
   constexpr uint32_t kCount = 3000;
   for (uint32_t i = 0; i < kCount; ++i) {
     const std::vector<uint8_t> p = Payload(i);

@@ -1,5 +1,6 @@
 // Reads recorded SICK telegrams from the files real scanners were captured in (the fixtures in
-// ../shared/data/sick, SOURCES.md there):
+// $FLEETMAP_DATA_DIR/sick, SOURCES.md there; FLEETMAP_DATA_DIR is the folder of real
+// recordings, tests/support/data_dir.h):
 //   *.pcapng       pcapng capture (Ethernet, IPv4, TCP): segments are ordered by sequence
 //                  number per direction, the streams reassembled and cut into telegrams.
 //   *.pcapng.json  sick_scan_xd's pcap_json_converter output: one framed telegram per entry.

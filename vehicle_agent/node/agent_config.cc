@@ -284,8 +284,8 @@ AgentConfig::AgentConfig() {
   urls = {lcmtypes::kDefaultSensorUrl, lcmtypes::kDefaultUplinkUrl, lcmtypes::kDefaultDownlinkUrl};
   // An agent answers quickly when its scanner is away: the loop waits for connects.
   sick.client.connect_timeout_s = 0.5;
-  // ... and comes back within a second of the scanner's return (issue 9): the scanner sits on
-  // the vehicle's own Ethernet, so trying twice a second costs nothing.
+  // ... and must come back within a second of the scanner's return (docs/reliability.md): the
+  // scanner sits on the vehicle's own Ethernet, so trying twice a second costs nothing.
   sick.client.reconnect_backoff_max_s = 0.5;
   node.initial_pose = InitialPoseSource::kGlobal;
   node.software_version = FLEETMAP_VERSION;

@@ -14,10 +14,10 @@
 #   wired  1 Gbit/s (tbf)
 #   wifi   20 Mbit/s (tbf) and 2% of the packets dropped
 #   bad    20 Mbit/s (tbf) and 30% of the packets dropped
-# netem is not compiled into this kernel (../shared/LCM_NOTES.md): the rate is a tbf below an
-# HTB root, and the loss an HTB class whose pfifo holds 0 packets, fed by a classic-BPF
-# filter that matches a random share of packets (as scripts/fleet_run.sh --loss). No delay or
-# jitter: see docs/lan_experiments.md.
+# Without tc netem, which not every kernel has ("Specified qdisc kind is unknown"): the rate
+# is a tbf below an HTB root, and the loss an HTB class whose pfifo holds 0 packets, fed by a
+# classic-BPF filter that matches a random share of packets (as scripts/fleet_run.sh --loss).
+# No delay or jitter: see docs/lan_experiments.md.
 
 LAN_NAMESPACES=()  # every namespace made, deleted by lan_destroy
 LAN_SHAPED=()      # "NS DEV" of every shaped interface
