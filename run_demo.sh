@@ -2,7 +2,8 @@
 # The main job, on an embedded default: the simulated LivingLab hall (the paper's 60 m x 18 m
 # test hall) with three vehicles, pallets placed and taken away, people walking. Each vehicle
 # runs its own fleetmap-agent, the server fleetmap-aggregator, all talking over real LCM UDP
-# multicast on loopback, recorded by lcm-logger; then the run is scored against the truth.
+# multicast on loopback, recorded by fleetmap-record (lcm-logger's file format, docs/channels.md);
+# then the run is scored against the truth.
 # Installs what is missing, builds, runs (a few minutes on 2 cores), and prints where the
 # results are: out/current_map.png, out/report.json, out/report.md, out/divergence.png, the
 # logs in out/logs/.

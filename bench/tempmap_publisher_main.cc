@@ -19,6 +19,7 @@
 
 #include "core/version.h"
 #include "fleetmap/tempmap_tile_t.hpp"
+#include "lcmtypes/channels.h"
 
 namespace {
 
@@ -43,7 +44,7 @@ std::vector<Map> ReadMaps(const std::string& path) {
   lcm::LogFile log(path, "r");
   if (!log.good()) return complete;
   while (const lcm::LogEvent* e = log.readNextEvent()) {
-    if (e->channel.rfind("TEMPMAP_", 0) != 0 || e->channel == "TEMPMAP_ACK") continue;
+    if (!fleetmap::lcmtypes::IsTempMapTileChannel(e->channel)) continue;
     fleetmap::tempmap_tile_t t;
     if (t.decode(e->data, 0, static_cast<int>(e->datalen)) != static_cast<int>(e->datalen) ||
         t.tile_count <= 0 || t.tile_index < 0 || t.tile_index >= t.tile_count)
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
       tile.start_utime = now - (tile.end_utime - tile.start_utime);
       tile.end_utime = now;
       tile.utime = now;
-      lcm.publish(std::string("TEMPMAP_") + id, &tile);
+      lcm.publish(fleetmap::lcmtypes::TempMapChannel(id), &tile);
       ++tiles_sent;
     }
     ++sent[v];

@@ -4,8 +4,8 @@
 #                            refuses two packages that ship the same file)
 #   fleetmap-agent           fleetmap-agent, fleetmap-agent@.service, /etc/fleetmap/agent-example.yaml
 #   fleetmap-aggregator      fleetmap-aggregator, fleetmap-mapctl, fleetmap-keygen (the fleet key,
-#                            copied to every vehicle), fleetmap-aggregator.service,
-#                            /etc/fleetmap/aggregator.{yaml,env}
+#                            copied to every vehicle), fleetmap-record (the LCM log recorder),
+#                            fleetmap-aggregator.service, /etc/fleetmap/aggregator.{yaml,env}
 #   fleetmap-tools           simulator, evaluation, scanner emulator, CAN log writer, maptool,
 #                            CARMEN evaluation, sample publisher, the LAN experiment; the worlds
 #   fleetmap-lcmtypes-java   the lcm-spy type jar and fleetmap-spy

@@ -1,7 +1,7 @@
 // The edge between LCM messages and the libraries' types, shared by every process: each
 // FromMessage validates what came from the network (sizes, NaN, limits) and returns a Status
 // instead of handing garbage on; Decode catches what LCM's generated decoders throw on
-// corrupt lengths. Channel names and default URLs live here too.
+// corrupt lengths. Default URLs live here too; channel names in lcmtypes/channels.h.
 #pragma once
 
 #include <string>
@@ -11,6 +11,7 @@
 #include "fleetmap/laser_scan_t.hpp"
 #include "fleetmap/odometry_t.hpp"
 #include "fleetmap/pose_with_covariance_t.hpp"
+#include "lcmtypes/channels.h"
 
 namespace fleetmap::lcmtypes {
 
@@ -25,26 +26,6 @@ constexpr const char* kDefaultDownlinkUrl = "udpm://239.255.76.68:7668?ttl=0";
 // A scan may have at most this many beams (an LMS511 at 1/6 deg has 1141; 0.1 deg over 360
 // deg is 3600).
 constexpr int kMaxBeams = 10000;
-
-inline std::string ScanChannel(const std::string& vehicle) { return "SCAN_" + vehicle; }
-inline std::string OdomChannel(const std::string& vehicle) { return "ODOM_" + vehicle; }
-inline std::string PoseChannel(const std::string& vehicle) { return "POSE_" + vehicle; }
-// The simulator's ground-truth pose of a vehicle (never on a real fleet).
-inline std::string TruthChannel(const std::string& vehicle) { return "TRUTH_" + vehicle; }
-// A pose from a vehicle's own (external) localization system.
-inline std::string ExternalPoseChannel(const std::string& vehicle) { return "EXTPOSE_" + vehicle; }
-// Uplink: what a vehicle's agent publishes.
-inline std::string TempMapChannel(const std::string& vehicle) { return "TEMPMAP_" + vehicle; }
-inline std::string DivergenceChannel(const std::string& vehicle) { return "DIVERGENCE_" + vehicle; }
-constexpr const char* kTempMapChannelRegex = "TEMPMAP_.*";
-constexpr const char* kMapRequestChannel = "MAP_REQUEST";
-// Downlink: what the aggregator publishes.
-constexpr const char* kTempMapAckChannel = "TEMPMAP_ACK";
-constexpr const char* kMapDeltaChannel = "MAP_DELTA";
-constexpr const char* kMapKeyframeChannel = "MAP_KEYFRAME";
-constexpr const char* kMergeReportChannel = "MERGE_REPORT";
-// Both: every process's heartbeat, e.g. STATUS_agent_v1, STATUS_aggregator.
-inline std::string StatusChannel(const std::string& process) { return "STATUS_" + process; }
 
 // A vehicle id from the network: 1 to 64 printable ASCII characters. Ids become channel names,
 // and LCM encodes a string only up to its first NUL, so an id with a NUL, a space or a control

@@ -28,6 +28,7 @@
 #include "fleetmap/status_t.hpp"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "fleetmap/tempmap_tile_t.hpp"
+#include "lcmtypes/channels.h"
 
 namespace fleetmap::tools {
 namespace {
@@ -153,7 +154,7 @@ merge_report_t SampleMergeReport(int64_t utime, int round) {
 void PublishRound(lcm::LCM& lcm, int round) {
   const int64_t utime = NowUtime();
   const laser_scan_t scan = SampleScan(utime, round);
-  lcm.publish("SCAN_agv_1", &scan);
+  lcm.publish(lcmtypes::ScanChannel("agv_1"), &scan);
 
   odometry_t odom;
   odom.utime = utime;
@@ -161,7 +162,7 @@ void PublishRound(lcm::LCM& lcm, int round) {
   odom.pose = Pose(0.1 * round, 2.0, 0.0);
   odom.v_mps = 0.5;
   odom.omega_radps = 0.0;
-  lcm.publish("ODOM_agv_1", &odom);
+  lcm.publish(lcmtypes::OdomChannel("agv_1"), &odom);
 
   pose_with_covariance_t pose;
   pose.utime = utime;
@@ -169,10 +170,10 @@ void PublishRound(lcm::LCM& lcm, int round) {
   pose.pose = Pose(10.0 + 0.1 * round, 5.0, 0.02);
   for (int i = 0; i < 9; ++i) pose.covariance[i] = (i % 4 == 0) ? 0.01 : 0.0;
   pose.map_version = round;
-  lcm.publish("POSE_agv_1", &pose);
+  lcm.publish(lcmtypes::PoseChannel("agv_1"), &pose);
 
   const divergence_t divergence = SampleDivergence(utime, round);
-  lcm.publish("DIVERGENCE_agv_1", &divergence);
+  lcm.publish(lcmtypes::DivergenceChannel("agv_1"), &divergence);
 
   tempmap_tile_t temp;
   temp.utime = utime;
@@ -188,7 +189,7 @@ void PublishRound(lcm::LCM& lcm, int round) {
   temp.start_utime = utime - 2000000;
   temp.end_utime = utime;
   temp.tile = SampleTile(round);
-  lcm.publish("TEMPMAP_agv_1", &temp);
+  lcm.publish(lcmtypes::TempMapChannel("agv_1"), &temp);
 
   tempmap_ack_t ack;
   ack.utime = utime;
@@ -199,7 +200,7 @@ void PublishRound(lcm::LCM& lcm, int round) {
   ack.num_received = 1;
   ack.outcome = tempmap_ack_t::MERGED;
   ack.map_version = round;
-  lcm.publish("TEMPMAP_ACK", &ack);
+  lcm.publish(lcmtypes::kTempMapAckChannel, &ack);
 
   map_delta_t delta;
   delta.utime = utime;
@@ -208,7 +209,7 @@ void PublishRound(lcm::LCM& lcm, int round) {
   delta.tile_index = 0;
   delta.tile_count = 1;
   delta.tile = SampleTile(round);
-  lcm.publish("MAP_DELTA", &delta);
+  lcm.publish(lcmtypes::kMapDeltaChannel, &delta);
 
   map_keyframe_t keyframe;
   keyframe.utime = utime;
@@ -221,17 +222,17 @@ void PublishRound(lcm::LCM& lcm, int round) {
   keyframe.tile_index = 6;
   keyframe.tile_count = 8;
   keyframe.tile = SampleTile(round);
-  lcm.publish("MAP_KEYFRAME", &keyframe);
+  lcm.publish(lcmtypes::kMapKeyframeChannel, &keyframe);
 
   map_request_t request;
   request.utime = utime;
   request.vehicle_id = "agv_2";
   request.have_version = round - 2;
   request.num_tiles = 0;
-  lcm.publish("MAP_REQUEST", &request);
+  lcm.publish(lcmtypes::kMapRequestChannel, &request);
 
   const merge_report_t report = SampleMergeReport(utime, round);
-  lcm.publish("MERGE_REPORT", &report);
+  lcm.publish(lcmtypes::kMergeReportChannel, &report);
 
   status_t status;
   status.utime = utime;
@@ -243,7 +244,7 @@ void PublishRound(lcm::LCM& lcm, int round) {
   status.counter_names = {"rounds"};
   status.counter_values = {round};
   status.num_counters = 1;
-  lcm.publish("STATUS_publish_samples", &status);
+  lcm.publish(lcmtypes::StatusChannel("publish_samples"), &status);
 }
 
 int Run(int argc, char** argv) {

@@ -5,6 +5,8 @@
 set -euo pipefail
 
 repo_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# shellcheck source=tools/lcm_java_env.sh
+source "${repo_dir}/tools/lcm_java_env.sh"
 build_dir="${FLEETMAP_BUILD_DIR:-${repo_dir}/build}"
 jar="${build_dir}/lcmtypes/fleetmap_lcmtypes.jar"
 
@@ -44,14 +46,11 @@ for arg in "$@"; do
 done
 
 command -v lcm-logplayer-gui >/dev/null || die "lcm-logplayer-gui not found: apt-get install liblcm-java liblcm-bin"
-[[ -n "${DISPLAY:-}" ]] || die "no X display (DISPLAY is unset): run in a desktop session or under xvfb-run"
+fleetmap_java_display logplayer.sh
 if [[ ! -f "${jar}" ]]; then
   echo "logplayer.sh: warning: ${jar} not found (build first, or set FLEETMAP_BUILD_DIR);" \
     "replaying does not need it" >&2
 fi
 
-# The same class path and Java options as tools/spy.sh. Debian's lcm-logplayer-gui passes
-# -Xincgc, which Java 17 rejects unless told to ignore unknown VM options.
-export CLASSPATH="${jar}${CLASSPATH:+:${CLASSPATH}}"
-export JAVA_TOOL_OPTIONS="-XX:+IgnoreUnrecognizedVMOptions${JAVA_TOOL_OPTIONS:+ ${JAVA_TOOL_OPTIONS}}"
+fleetmap_java_env "${jar}"
 exec lcm-logplayer-gui "$@"

@@ -3,6 +3,8 @@
 set -euo pipefail
 
 repo_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# shellcheck source=tools/lcm_java_env.sh
+source "${repo_dir}/tools/lcm_java_env.sh"
 build_dir="${FLEETMAP_BUILD_DIR:-${repo_dir}/build}"
 jar="${build_dir}/lcmtypes/fleetmap_lcmtypes.jar"
 lcm_url="udpm://239.255.76.67:7667?ttl=0"
@@ -44,13 +46,10 @@ command -v lcm-spy >/dev/null || die "lcm-spy not found: apt-get install liblcm-
 if grep -q jchart2d "$(command -v lcm-spy)" && [[ ! -f /usr/share/java/jchart2d.jar ]]; then
   die "lcm-spy needs jchart2d: apt-get install libjchart2d-java"
 fi
-[[ -n "${DISPLAY:-}" ]] || die "no X display (DISPLAY is unset): run in a desktop session or under xvfb-run"
+fleetmap_java_display spy.sh
 if [[ "${lcm_url}" =~ ^udpm://([0-9.]+) ]] && ! ip route get "${BASH_REMATCH[1]}" >/dev/null 2>&1; then
   echo "spy.sh: warning: no route to ${BASH_REMATCH[1]}; add one: ip route add 224.0.0.0/4 dev lo" >&2
 fi
 
-# lcm-spy discovers message classes in the jars named by CLASSPATH. Debian's lcm-spy passes
-# -Xincgc, which Java 17 rejects unless told to ignore unknown VM options.
-export CLASSPATH="${jar}${CLASSPATH:+:${CLASSPATH}}"
-export JAVA_TOOL_OPTIONS="-XX:+IgnoreUnrecognizedVMOptions${JAVA_TOOL_OPTIONS:+ ${JAVA_TOOL_OPTIONS}}"
+fleetmap_java_env "${jar}"
 exec lcm-spy --lcm-url="${lcm_url}"

@@ -13,10 +13,7 @@
 namespace fleetmap::aggregator::node {
 namespace {
 
-constexpr const char* kTempMapPrefix = "TEMPMAP_";
 constexpr size_t kMaxVehicleIdBytes = 64;
-
-bool StartsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
 std::vector<int32_t> AllTiles(int32_t count) {
   std::vector<int32_t> all;
@@ -114,7 +111,7 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
                std::to_string(options_.limits.max_received_bytes) + ")");
     return;
   }
-  const bool tile = StartsWith(channel, kTempMapPrefix);
+  const bool tile = lcmtypes::HasPrefix(channel, lcmtypes::kTempMapPrefix);
   if (channel == lcmtypes::kTempMapAckChannel) {
     ++counters_.ignored_messages;  // matches TEMPMAP_.*: our own, when both links share a group
     return;
@@ -126,7 +123,7 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
     return;
   }
   // TEMPMAP_<id> belongs to vehicle <id>; any member of the fleet may ask for maps.
-  const std::string owner = tile ? channel.substr(std::string(kTempMapPrefix).size()) : "";
+  const std::string owner = lcmtypes::ChannelSuffix(channel, lcmtypes::kTempMapPrefix);
   auth::Opened opened;
   const auth::Verdict verdict = verifier_.Open(channel, data, size, owner, &opened);
   if (verdict != auth::Verdict::kAccepted) {
@@ -171,7 +168,7 @@ void AggregatorNode::OnTile(const std::string& channel, const void* data, int si
            channel + ": not a tempmap_tile_t: " + msg.status().ToString());
     return;
   }
-  const std::string suffix = channel.substr(std::string(kTempMapPrefix).size());
+  const std::string suffix = lcmtypes::ChannelSuffix(channel, lcmtypes::kTempMapPrefix);
   if (msg->vehicle_id != suffix) {
     Refuse("TEMPMAP: wrong vehicle id", counters_.wrong_vehicle_id,
            channel + ": a tile of vehicle '" + msg->vehicle_id.substr(0, kMaxVehicleIdBytes) +

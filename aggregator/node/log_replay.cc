@@ -32,7 +32,7 @@ struct Cursor {
 
 bool IsUplinkChannel(const std::string& channel) {
   if (channel == lcmtypes::kMapRequestChannel) return true;
-  return channel.rfind("TEMPMAP_", 0) == 0 && channel != lcmtypes::kTempMapAckChannel;
+  return lcmtypes::IsTempMapTileChannel(channel);
 }
 
 core::Result<ReplayStats> ReplayLogs(const std::vector<std::string>& paths, AggregatorNode& node,

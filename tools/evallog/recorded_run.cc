@@ -40,8 +40,6 @@ core::Status ReadLog(const std::string& path, std::vector<Event>& events) {
   return core::OkStatus();
 }
 
-bool StartsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
-
 // What the uplink said about one temporary map.
 struct TempMapSeen {
   int64_t first_tile_wall_utime = 0;
@@ -65,13 +63,13 @@ class Reader {
     ++t.messages;
     t.bytes += static_cast<int64_t>(e.data.size());
     if (e.channel == lcmtypes::kTempMapAckChannel) return;
-    if (StartsWith(e.channel, "TEMPMAP_")) return OnTempMapTile(e);
+    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kTempMapPrefix)) return OnTempMapTile(e);
     if (e.channel == lcmtypes::kMergeReportChannel) return OnMergeReport(e);
     if (e.channel == lcmtypes::kMapKeyframeChannel || e.channel == lcmtypes::kMapDeltaChannel)
       return OnMapTile(e);
-    if (StartsWith(e.channel, "DIVERGENCE_")) return OnDivergence(e);
-    if (StartsWith(e.channel, "POSE_")) return OnPose(e);
-    if (StartsWith(e.channel, "STATUS_agent_")) return OnAgentStatus(e);
+    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kDivergencePrefix)) return OnDivergence(e);
+    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kPosePrefix)) return OnPose(e);
+    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kAgentStatusPrefix)) return OnAgentStatus(e);
   }
 
   RecordedRun Finish(int64_t first_wall, int64_t last_wall) {

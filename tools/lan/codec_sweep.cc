@@ -14,8 +14,7 @@ namespace {
 const char* GroupOf(const std::string& channel) {
   if (channel == lcmtypes::kMapDeltaChannel) return "MAP_DELTA";
   if (channel == lcmtypes::kMapKeyframeChannel) return "MAP_KEYFRAME";
-  if (channel == lcmtypes::kTempMapAckChannel) return nullptr;
-  if (channel.rfind("TEMPMAP_", 0) == 0) return "TEMPMAP";
+  if (lcmtypes::IsTempMapTileChannel(channel)) return "TEMPMAP";
   return nullptr;
 }
 

@@ -17,7 +17,7 @@ constexpr const char* kSummedAgentCounters[] = {
 StatusSummary SummarizeStatus(const std::vector<LogMessage>& messages, int64_t until_utime) {
   StatusSummary summary;
   for (const LogMessage& m : messages) {
-    if (m.channel.rfind("STATUS_", 0) != 0) continue;
+    if (!lcmtypes::HasPrefix(m.channel, lcmtypes::kStatusPrefix)) continue;
     auto status = lcmtypes::Decode<fleetmap::status_t>(m.data.data(), int(m.data.size()));
     if (!status.ok() || status->counter_names.size() != status->counter_values.size()) {
       ++summary.malformed;

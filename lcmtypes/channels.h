@@ -1,0 +1,59 @@
+// The names of fleetmap's LCM channels (docs/channels.md), built and taken apart only here:
+// a process that matches a channel by a literal of its own would miss a renamed channel
+// silently.
+#pragma once
+
+#include <string>
+
+namespace fleetmap::lcmtypes {
+
+// Sensor group: on one vehicle, its scanner and odometry (or the simulator) to its agent.
+constexpr char kScanPrefix[] = "SCAN_";
+constexpr char kOdomPrefix[] = "ODOM_";
+// A pose from a vehicle's own (external) localization system.
+constexpr char kExternalPosePrefix[] = "EXTPOSE_";
+// The simulator's ground-truth pose of a vehicle (never on a real fleet).
+constexpr char kTruthPrefix[] = "TRUTH_";
+// Uplink: what a vehicle's agent publishes.
+constexpr char kPosePrefix[] = "POSE_";
+constexpr char kDivergencePrefix[] = "DIVERGENCE_";
+constexpr char kTempMapPrefix[] = "TEMPMAP_";
+constexpr char kTempMapChannelRegex[] = "TEMPMAP_.*";
+constexpr char kMapRequestChannel[] = "MAP_REQUEST";
+// Downlink: what the aggregator publishes. TEMPMAP_ACK shares the prefix of the vehicles'
+// TEMPMAP_<id> (and so matches kTempMapChannelRegex): IsTempMapTileChannel tells them apart.
+constexpr char kTempMapAckChannel[] = "TEMPMAP_ACK";
+constexpr char kMapDeltaChannel[] = "MAP_DELTA";
+constexpr char kMapKeyframeChannel[] = "MAP_KEYFRAME";
+constexpr char kMergeReportChannel[] = "MERGE_REPORT";
+// Both: every process's heartbeat, STATUS_<process>: STATUS_agent_<id>, STATUS_aggregator.
+constexpr char kStatusPrefix[] = "STATUS_";
+constexpr char kAgentStatusPrefix[] = "STATUS_agent_";
+
+inline std::string ScanChannel(const std::string& vehicle) { return kScanPrefix + vehicle; }
+inline std::string OdomChannel(const std::string& vehicle) { return kOdomPrefix + vehicle; }
+inline std::string ExternalPoseChannel(const std::string& vehicle) {
+  return kExternalPosePrefix + vehicle;
+}
+inline std::string TruthChannel(const std::string& vehicle) { return kTruthPrefix + vehicle; }
+inline std::string PoseChannel(const std::string& vehicle) { return kPosePrefix + vehicle; }
+inline std::string DivergenceChannel(const std::string& vehicle) {
+  return kDivergencePrefix + vehicle;
+}
+inline std::string TempMapChannel(const std::string& vehicle) { return kTempMapPrefix + vehicle; }
+inline std::string StatusChannel(const std::string& process) { return kStatusPrefix + process; }
+
+inline bool HasPrefix(const std::string& channel, const char* prefix) {
+  return channel.rfind(prefix, 0) == 0;
+}
+// What follows the prefix: ChannelSuffix("TEMPMAP_v1", kTempMapPrefix) is "v1"; "" when the
+// channel does not start with the prefix.
+inline std::string ChannelSuffix(const std::string& channel, const char* prefix) {
+  return HasPrefix(channel, prefix) ? channel.substr(std::char_traits<char>::length(prefix)) : "";
+}
+// TEMPMAP_<id>, a vehicle's temporary-map tile; not the aggregator's TEMPMAP_ACK.
+inline bool IsTempMapTileChannel(const std::string& channel) {
+  return HasPrefix(channel, kTempMapPrefix) && channel != kTempMapAckChannel;
+}
+
+}  // namespace fleetmap::lcmtypes
