@@ -6,8 +6,9 @@
 #   fleetmap-aggregator      fleetmap-aggregator, fleetmap-mapctl, fleetmap-keygen (the fleet key,
 #                            copied to every vehicle), fleetmap-record (the LCM log recorder),
 #                            fleetmap-aggregator.service, /etc/fleetmap/aggregator.{yaml,env}
-#   fleetmap-tools           simulator, evaluation, scanner emulator, CAN log writer, maptool,
-#                            CARMEN evaluation, sample publisher, the LAN experiment; the worlds
+#   fleetmap-tools           simulator, world generator, evaluation, scanner emulator, CAN log
+#                            writer, maptool, CARMEN evaluation, sample publisher, the LAN
+#                            experiment; the worlds
 #   fleetmap-lcmtypes-java   the lcm-spy type jar and fleetmap-spy
 # Depends: dpkg-shlibdeps reads the binaries (CPACK_DEBIAN_PACKAGE_SHLIBDEPS), plus what the
 # scripts call. Files under /etc are conffiles: an operator's edits survive upgrades.
@@ -16,7 +17,7 @@ set(fleetmap_pkg_dir "${PROJECT_SOURCE_DIR}/packaging")
 set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
 set(fleetmap_packaged_targets fleetmap-agent fleetmap-aggregator fleetmap-mapctl fleetmap-keygen fleetmap-record fleetmap-sim
     fleetmap-eval fleetmap-maptool fleetmap-sick-emulator fleetmap-sim-candump
-    fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool)
+    fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool fleetmap-worldgen)
 add_custom_target(fleetmap_packaged)
 add_dependencies(fleetmap_packaged ${fleetmap_packaged_targets})
 if(TARGET fleetmap_lcmtypes_jar)
@@ -53,6 +54,7 @@ install(FILES "${fleetmap_pkg_dir}/etc/aggregator.yaml" "${fleetmap_pkg_dir}/etc
 # source tree (/usr/share/fleetmap/tools/...), and the programs through --bin /usr/bin.
 install(TARGETS fleetmap-sim fleetmap-eval fleetmap-maptool fleetmap-sick-emulator
                 fleetmap-sim-candump fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool
+                fleetmap-worldgen
         RUNTIME DESTINATION bin COMPONENT tools)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/tools/sim/worlds" DESTINATION share/fleetmap/tools/sim
         COMPONENT tools)

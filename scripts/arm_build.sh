@@ -103,6 +103,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_TOOLCHAIN_FILE="$root/cmake/aarch64-linux-gnu.cmake" -DFLEETMAP_ARM_SYSROOT="$sysroot" \
   -DCMAKE_CROSSCOMPILING_EMULATOR="$work/qemu-run" -DOpenCV_DIR="$work/opencv" \
   -DEigen3_DIR=/usr/share/eigen3/cmake -Dnlohmann_json_DIR=/usr/share/cmake/nlohmann_json \
+  -DCLI11_DIR=/usr/share/cmake/CLI11 \
   -DFLEETMAP_BUILD_JAR=OFF -DFLEETMAP_WERROR=OFF >"$work/configure.log"
 tests=(fleetmap_vehicle_agent_test fleetmap_agent_node_test fleetmap_sick_test fleetmap_can_test
        fleetmap_lcmtypes_test)

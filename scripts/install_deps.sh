@@ -11,6 +11,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   iproute2  # ip route for LCM multicast on loopback
   nlohmann-json3-dev  # SICK recordings (.pcapng.json) in the emulator and tests
+  libcli11-dev  # command lines of the programs (tools/worldgen: fleetmap-worldgen)
   qemu-system-x86 linux-image-amd64 busybox-static can-utils cpio  # SocketCAN tests in a VM
   clang-format  # scripts/check_format.sh (ctest format_test)
   clang-14 libclang-rt-14-dev  # libFuzzer targets (scripts/fuzz.sh, docs/fuzzing.md)

@@ -24,8 +24,11 @@ using fleetmap::testing::Process;
 using fleetmap::testing::ReadText;
 using fleetmap::testing::RunToExit;
 
-// This test's own group and port (other tests use other ones).
-const std::string kUrl = "udpm://239.255.78.1:7831?ttl=0&recv_buf_size=8388608";
+// Each test its own group and port: ctest runs the tests of this file in parallel, and on
+// Linux a socket bound to a port receives every group joined on that port.
+const std::string kBurstUrl = "udpm://239.255.78.1:7831?ttl=0&recv_buf_size=8388608";
+const std::string kFullDiskUrl = "udpm://239.255.78.2:7832?ttl=0&recv_buf_size=8388608";
+const std::string kKeepUrl = "udpm://239.255.78.3:7833?ttl=0";
 
 class RecordTest : public ::testing::Test {
  protected:
@@ -36,8 +39,9 @@ class RecordTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  std::unique_ptr<Process> StartRecorder(const std::vector<std::string>& extra) {
-    std::vector<std::string> args = {FLEETMAP_RECORD_BINARY, "--lcm-url", kUrl, "--quiet"};
+  std::unique_ptr<Process> StartRecorder(const std::string& url,
+                                         const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {FLEETMAP_RECORD_BINARY, "--lcm-url", url, "--quiet"};
     args.insert(args.end(), extra.begin(), extra.end());
     auto recorder = std::make_unique<Process>(args, dir_ / "out.txt", dir_ / "err.txt");
     // Give it time to join the group; messages sent before that are not this test's concern.
@@ -60,11 +64,11 @@ std::vector<uint8_t> Payload(uint32_t i) {
 }
 
 TEST_F(RecordTest, BurstBeyondLcmDefaultQueueIsRecordedWholeAndInOrder) {
-  FLEETMAP_REQUIRE_MULTICAST(kUrl);
+  FLEETMAP_REQUIRE_MULTICAST(kBurstUrl);
   const std::string log = dir_ / "burst.lcmlog";
-  auto recorder = StartRecorder({"--channel", "TEMPMAP_.*", log});
+  auto recorder = StartRecorder(kBurstUrl, {"--channel", "TEMPMAP_.*", log});
   ASSERT_TRUE(recorder->started());
-  lcm::LCM lcm(kUrl);
+  lcm::LCM lcm(kBurstUrl);
   ASSERT_TRUE(lcm.good());
   // 3000 x 200 B fits the 8 MB receive buffer, so the kernel drops nothing; LCM's default
   // queue of 30 would (lcm-logger kept about 250 of such a burst on a 2-core x86_64 virtual
@@ -98,11 +102,11 @@ TEST_F(RecordTest, BurstBeyondLcmDefaultQueueIsRecordedWholeAndInOrder) {
 }
 
 TEST_F(RecordTest, FullDiskIsAnErrorNotAShortLog) {
-  FLEETMAP_REQUIRE_MULTICAST(kUrl);
+  FLEETMAP_REQUIRE_MULTICAST(kFullDiskUrl);
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
-  auto recorder = StartRecorder({"--force", "/dev/full"});
+  auto recorder = StartRecorder(kFullDiskUrl, {"--force", "/dev/full"});
   ASSERT_TRUE(recorder->started());
-  lcm::LCM lcm(kUrl);
+  lcm::LCM lcm(kFullDiskUrl);
   const std::vector<uint8_t> p = Payload(7);
   for (int i = 0; i < 100; ++i)
     lcm.publish("TEMPMAP_V1", p.data(), static_cast<unsigned>(p.size()));
@@ -115,7 +119,7 @@ TEST_F(RecordTest, FullDiskIsAnErrorNotAShortLog) {
 TEST_F(RecordTest, KeepsAnExistingLogUnlessForced) {
   const std::string log = dir_ / "kept.lcmlog";
   { std::ofstream(log) << "earlier run"; }
-  EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY, "--lcm-url", kUrl, log}, dir_ / "out.txt",
+  EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY, "--lcm-url", kKeepUrl, log}, dir_ / "out.txt",
                       dir_ / "err.txt", 30),
             2);
   EXPECT_EQ(ReadText(log), "earlier run");
