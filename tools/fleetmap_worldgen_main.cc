@@ -9,17 +9,39 @@
 #include "core/codecs/map_render.h"
 #include "core/map_io.h"
 #include "core/version.h"
+#include "tools/sim/scenario.h"
+#include "tools/worldgen/scenario_writer.h"
 #include "tools/worldgen/world_generator.h"
 
 namespace {
 
 using namespace fleetmap;
 
-std::string PngPathOf(const std::string& yaml_path) {
-  const size_t dot = yaml_path.find_last_of('.');
-  const size_t slash = yaml_path.find_last_of('/');
-  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
-  return (has_ext ? yaml_path.substr(0, dot) : yaml_path) + ".png";
+namespace fs = std::filesystem;
+
+// OUT.yaml -> OUT<suffix>
+std::string Beside(const std::string& yaml_path, const std::string& suffix) {
+  fs::path p(yaml_path);
+  return (p.parent_path() / p.stem()).string() + suffix;
+}
+
+// Writes a scenario for the map at `map_yaml` (already on disk) to `path`.
+int WriteScenario(const core::OccupancyGrid& map, const std::string& map_yaml,
+                  const std::string& path, const std::string& name,
+                  const worldgen::ScenarioOptions& options) {
+  std::error_code ec;
+  auto scenario = worldgen::WriteScenarioFor(map, fs::absolute(map_yaml, ec).string(), options);
+  if (scenario.ok()) scenario->name = name;
+  const core::Status saved = scenario.ok() ? sim::SaveScenario(*scenario, path) : scenario.status();
+  if (!saved.ok()) {
+    std::fprintf(stderr, "fleetmap-worldgen: %s: %s\n", map_yaml.c_str(), saved.ToString().c_str());
+    return 1;
+  }
+  std::printf(
+      "worldgen: scenario %s: %zu vehicles, %zu objects, %zu people and forklifts, %.0f s -> %s\n",
+      scenario->name.c_str(), scenario->vehicles.size(), scenario->objects.size(),
+      scenario->actors.size(), scenario->duration_s, path.c_str());
+  return 0;
 }
 
 int Run(int argc, char** argv) {
@@ -29,8 +51,9 @@ int Run(int argc, char** argv) {
       "Exit status: 0 on success, 1 when the map cannot be made or written, 2 on usage errors.",
       "fleetmap-worldgen");
   app.set_version_flag("--version", std::string("fleetmap-worldgen ") + core::kFleetmapVersion);
-  std::string style_name = "racked_warehouse", out;
+  std::string style_name = "racked_warehouse", out, scenario_for;
   worldgen::WorldOptions o;
+  worldgen::ScenarioOptions so;
   double rotation_deg = 0.0;
   bool list = false, no_png = false;
   app.add_flag("--list-styles", list, "print the building styles and their default sizes");
@@ -45,7 +68,23 @@ int Run(int argc, char** argv) {
   app.add_option("--rotation-deg", rotation_deg, "the building's turn in the grid, degrees")
       ->capture_default_str();
   app.add_flag("--no-png", no_png, "write no PNG picture");
-  app.add_option("OUT.yaml", out, "the map to write (its image: OUT.pgm, picture: OUT.png)");
+  app.add_option("--scenario-for", scenario_for,
+                 "write only a scenario (to OUT.yaml) for this map_server map, e.g. your own");
+  CLI::Option* scenario_seed =
+      app.add_option("--scenario-seed", so.seed, "the scenario's random seed (default: --seed)");
+  app.add_option("--duration", so.duration_s, "the scenario's length, seconds")
+      ->capture_default_str();
+  app.add_option("--vehicles", so.vehicles, "vehicles, 1 to 5")->capture_default_str();
+  app.add_option("--objects-added", so.objects_added, "pallets appearing during the run")
+      ->capture_default_str();
+  app.add_option("--objects-removed", so.objects_removed, "pallets taken away during the run")
+      ->capture_default_str();
+  app.add_option("--people", so.people, "people crossing the routes")->capture_default_str();
+  app.add_option("--forklifts", so.forklifts, "forklifts driving along routes")
+      ->capture_default_str();
+  app.add_option("OUT.yaml", out,
+                 "the map to write (image OUT.pgm, picture OUT.png, scenario "
+                 "OUT_scenario.yaml); with --scenario-for, the scenario");
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -66,6 +105,16 @@ int Run(int argc, char** argv) {
     std::fprintf(stderr, "fleetmap-worldgen: OUT.yaml is required (see --help)\n");
     return 2;
   }
+  std::error_code ec;  // the folder is made when missing; a failure shows when saving
+  if (!fs::path(out).parent_path().empty()) fs::create_directories(fs::path(out).parent_path(), ec);
+  if (!scenario_for.empty()) {
+    auto map = core::LoadMapServerMap(scenario_for);
+    if (!map.ok()) {
+      std::fprintf(stderr, "fleetmap-worldgen: %s\n", map.status().ToString().c_str());
+      return 1;
+    }
+    return WriteScenario(map->grid, scenario_for, out, fs::path(out).stem().string(), so);
+  }
   auto style = worldgen::ParseBuildingStyle(style_name);
   if (!style.ok()) {
     std::fprintf(stderr, "fleetmap-worldgen: --style: %s\n", style.status().message().c_str());
@@ -74,11 +123,8 @@ int Run(int argc, char** argv) {
   o.style = *style;
   o.render.rotation_rad = rotation_deg * M_PI / 180.0;
   auto world = worldgen::GenerateWorld(o);
-  std::error_code ec;  // the folder is made when missing; a failure shows when saving
-  const std::filesystem::path folder = std::filesystem::path(out).parent_path();
-  if (!folder.empty()) std::filesystem::create_directories(folder, ec);
   core::Status saved = world.ok() ? core::SaveMapServerMap(world->map.grid, out) : world.status();
-  if (saved.ok() && !no_png) saved = core::RenderGridToPng(world->map.grid, PngPathOf(out));
+  if (saved.ok() && !no_png) saved = core::RenderGridToPng(world->map.grid, Beside(out, ".png"));
   if (!saved.ok()) {
     std::fprintf(stderr, "fleetmap-worldgen: %s\n", saved.ToString().c_str());
     return 1;
@@ -94,7 +140,9 @@ int Run(int argc, char** argv) {
       100.0 * g.CountState(core::CellState::kOccupied) / n,
       100.0 * g.CountState(core::CellState::kUnknown) / n, world->plan.walls.size(),
       world->plan.solids.size(), out.c_str());
-  return 0;
+  if (scenario_seed->count() == 0) so.seed = static_cast<uint32_t>(o.seed);
+  return WriteScenario(world->map.grid, out, Beside(out, "_scenario.yaml"),
+                       fs::path(out).stem().string(), so);
 }
 
 }  // namespace

@@ -26,6 +26,22 @@ TEST(RouteTest, DrivesTurnsAndStops) {
   EXPECT_EQ(end.v_mps, 0.0);
 }
 
+TEST(RouteTest, StandsStillAtEachWaypointForItsDwell) {
+  RouteOptions o;
+  o.speed_mps = 1.0;
+  o.dwell_s = 3.0;
+  const Route route({{0, 0}, {2, 0}, {2, 2}}, o);
+  // 2 s to the corner, 3 s standing, the turn, 2 s up, 3 s standing at the end.
+  EXPECT_NEAR(route.period_s(), 2 + 3 + M_PI / 2 / 0.5 + 2 + 3, 1e-9);
+  for (double t : {2.1, 3.5, 4.9}) {
+    const RouteState standing = route.StateAt(t);
+    EXPECT_NEAR(standing.pose.x_m, 2.0, 1e-9) << t;
+    EXPECT_EQ(standing.v_mps, 0.0) << t;
+    EXPECT_EQ(standing.omega_radps, 0.0) << t;
+  }
+  EXPECT_GT(route.StateAt(5.1).omega_radps, 0.0);
+}
+
 TEST(RouteTest, LoopReturnsToTheStartPose) {
   RouteOptions o;
   o.loop = true;

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/sim/sim_test_util.h"
 #include "tools/sim/world.h"
 
@@ -72,7 +74,59 @@ TEST(WorldTest, RejectsObjectsOutsideTheMap) {
   s.objects[0].polygon_m = RectanglePolygon({12.0, 3.0}, {1, 1}, 0);
   auto w = World::Create(s, testing::Room());
   ASSERT_FALSE(w.ok());
-  EXPECT_THAT(w.status().message(), HasSubstr("tiny.yaml:6: objects[0].polygon: lies outside"));
+  // The field the file used (a rect), the object's extent and the map's.
+  EXPECT_THAT(w.status().message(),
+              HasSubstr("tiny.yaml:6: objects[0].rect: object 'box' spans x 11.50..12.50 m, "
+                        "y 2.50..3.50 m, beyond the map (x 0.00..10.00 m, y 0.00..6.00 m)"));
+}
+
+TEST(WorldTest, RejectsAPersonWalkingThroughAnObject) {
+  Scenario s = Tiny();  // the box covers x 4.5..5.5 m, y 2.5..3.5 m
+  DynamicActor person;
+  person.id = "p1";
+  person.path_m = {{1.0, 2.1}, {9.0, 2.1}};  // 0.4 m from the box: clear with radius 0.25 m
+  person.line = 11;
+  s.actors.push_back(person);
+  EXPECT_TRUE(World::Create(s, testing::Room()).ok());
+  s.actors[0].radius_m = 0.5;  // now it touches the box
+  auto w = World::Create(s, testing::Room());
+  ASSERT_FALSE(w.ok());
+  EXPECT_THAT(w.status().message(),
+              HasSubstr("tiny.yaml:11: actors[0].path leg 0: person 'p1' (radius 0.50 m) runs "
+                        "into object 'box' at (4."));
+}
+
+TEST(ScenarioTest, WrittenAsYamlItReadsBackTheSame) {
+  Scenario s = ParseScenario(testing::kRoomWithBoxesScenario, "/w/room_scenario.yaml").value();
+  DynamicActor forklift;
+  forklift.id = "f1";
+  forklift.kind = "forklift";
+  forklift.radius_m = 0.8;
+  forklift.path_m = {{1, 5}, {9, 5}};
+  forklift.motion.loop = true;
+  forklift.motion.dwell_s = 4;
+  s.actors.push_back(forklift);
+  s.vehicles[0].scanner = FindScannerModel("TiM571").value();
+  auto back = ParseScenario(ScenarioToYaml(s, "room.yaml"), "/w/room_scenario.yaml");
+  ASSERT_TRUE(back.ok()) << back.status().ToString() << "\n" << ScenarioToYaml(s, "room.yaml");
+  EXPECT_EQ(back->map_yaml, "/w/room.yaml");
+  EXPECT_EQ(back->duration_s, 70);
+  EXPECT_EQ(back->seed, 4u);
+  ASSERT_EQ(back->objects.size(), 2u);
+  EXPECT_EQ(back->objects[1].id, "box_b");
+  EXPECT_EQ(back->objects[1].appear_s, 5);
+  EXPECT_EQ(back->objects[1].disappear_s, 40);
+  EXPECT_FALSE(std::isfinite(back->objects[0].disappear_s));
+  for (size_t i = 0; i < 4; ++i)
+    EXPECT_NEAR((back->objects[1].polygon_m[i] - s.objects[1].polygon_m[i]).norm(), 0, 1e-3);
+  ASSERT_EQ(back->actors.size(), 1u);
+  EXPECT_EQ(back->actors[0].kind, "forklift");
+  EXPECT_EQ(back->actors[0].motion.dwell_s, 4);
+  EXPECT_TRUE(back->actors[0].motion.loop);
+  ASSERT_EQ(back->vehicles.size(), 1u);
+  EXPECT_EQ(back->vehicles[0].scanner.name, "TiM571");
+  EXPECT_EQ(back->vehicles[0].route_m, s.vehicles[0].route_m);
+  EXPECT_EQ(back->vehicles[0].motion.speed_mps, 1.0);
 }
 
 TEST(WorldTest, RejectsARouteThroughAWall) {

@@ -29,6 +29,10 @@ Route::Route(std::vector<Eigen::Vector2d> waypoints, RouteOptions options)
     phases_.push_back({t, t + duration, pose, options_.speed_mps, 0.0});
     t += duration;
     pose = core::Pose2(stops[i + 1].x(), stops[i + 1].y(), heading);
+    if (options_.dwell_s > 0) {
+      phases_.push_back({t, t + options_.dwell_s, pose, 0.0, 0.0});
+      t += options_.dwell_s;
+    }
   }
   // A looping route turns back to its starting heading to close the cycle.
   if (options_.loop) {

@@ -1,6 +1,7 @@
 // A vehicle's motion along waypoints: turn in place towards the next waypoint, drive straight
-// to it at constant speed, repeat; once through, or looping back to the first waypoint. The
-// pose is a pure function of time, so every run of a scenario is exactly repeatable.
+// to it at constant speed, stand there for dwell_s, repeat; once through, or looping back to the
+// first waypoint. The pose is a pure function of time, so every run of a scenario is exactly
+// repeatable.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +16,7 @@ struct RouteOptions {
   double angular_speed_radps = 0.5;  // turning speed at waypoints
   bool loop = false;                 // after the last waypoint, drive back to the first
   double start_s = 0.0;              // the vehicle stands at the first waypoint until then
+  double dwell_s = 0.0;              // stands still this long on reaching each waypoint
 };
 
 struct RouteState {

@@ -19,6 +19,7 @@ struct SemiStaticObject {
   std::string id;
   std::string kind = "pallet";
   std::vector<Eigen::Vector2d> polygon_m;  // in the static map frame, metres
+  std::string shape_field = "polygon";     // "rect" or "polygon": how the file gave it
   double appear_s = 0.0;
   double disappear_s = std::numeric_limits<double>::infinity();
   int line = 0;  // where it is defined in the scenario file, for messages
@@ -79,6 +80,14 @@ struct Scenario {
 // the map (objects inside it, routes clear of walls) are done by World::Create.
 core::Result<Scenario> LoadScenario(const std::string& path);
 core::Result<Scenario> ParseScenario(const std::string& yaml_text, const std::string& name);
+
+// The scenario as YAML that LoadScenario reads back (objects as polygons), naming the map as
+// `map_reference`; SaveScenario writes it to `path`, the map relative to the file's folder.
+std::string ScenarioToYaml(const Scenario& scenario, const std::string& map_reference);
+core::Status SaveScenario(const Scenario& scenario, const std::string& path);
+
+// Metres from p to the polygon's outline; 0 inside it.
+double DistanceToPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
 
 // An axis-aligned or rotated rectangle as a polygon.
 std::vector<Eigen::Vector2d> RectanglePolygon(const Eigen::Vector2d& center,

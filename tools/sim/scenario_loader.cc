@@ -29,6 +29,8 @@ Status ReadMotion(const YamlReader& r, const YAML::Node& n, const std::string& f
       Positive(r, n, "angular_speed_radps", f + ".angular_speed_radps", m.angular_speed_radps));
   FLEETMAP_ASSIGN_OR_RETURN(m.loop, r.GetOr<bool>(n, "loop", f + ".loop", m.loop));
   FLEETMAP_ASSIGN_OR_RETURN(m.start_s, r.Number(n, "start_s", f + ".start_s", m.start_s));
+  FLEETMAP_ASSIGN_OR_RETURN(m.dwell_s, r.Number(n, "dwell_s", f + ".dwell_s", m.dwell_s));
+  if (m.dwell_s < 0) return r.Error(n["dwell_s"], f + ".dwell_s", "must not be negative");
   return core::OkStatus();
 }
 
@@ -48,6 +50,7 @@ Result<SemiStaticObject> ReadObject(const YamlReader& r, const YAML::Node& n,
     double yaw_deg;
     FLEETMAP_ASSIGN_OR_RETURN(yaw_deg, r.Number(rect, "yaw_deg", f + ".rect.yaw_deg", 0.0));
     o.polygon_m = RectanglePolygon(center, size, yaw_deg * kDeg);
+    o.shape_field = "rect";
   } else if (n["polygon"]) {
     FLEETMAP_ASSIGN_OR_RETURN(o.polygon_m, r.Points(n["polygon"], f + ".polygon", 3));
   } else {

@@ -40,11 +40,44 @@ std::vector<int64_t> RasterizePolygon(const core::GridGeometry& g,
   return cells;
 }
 
-std::string Field(const char* list, size_t i, const char* field) {
+std::string Field(const char* list, size_t i, const std::string& field) {
   return std::string(list) + "[" + std::to_string(i) + "]." + field;
 }
 
+// "x 1.00..2.00 m, y 3.00..4.00 m": the bounding box of points.
+std::string Extent(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::Vector2d lo(1e18, 1e18), hi(-1e18, -1e18);
+  for (const Eigen::Vector2d& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  char text[96];
+  std::snprintf(text, sizeof(text), "x %.2f..%.2f m, y %.2f..%.2f m", lo.x(), hi.x(), lo.y(),
+                hi.y());
+  return text;
+}
+
+std::string MapExtent(const core::GridGeometry& g) {
+  const double w = g.width() * g.resolution_m(), h = g.height() * g.resolution_m();
+  std::vector<Eigen::Vector2d> corners;
+  for (const Eigen::Vector2d& c :
+       {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0), Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)})
+    corners.push_back(g.origin().Apply(c));
+  return Extent(corners);
+}
+
 }  // namespace
+
+double DistanceToPolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  if (Inside(poly, p)) return 0.0;
+  double best = 1e18;
+  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Eigen::Vector2d d = poly[i] - poly[j];
+    const double t = std::clamp((p - poly[j]).dot(d) / std::max(d.squaredNorm(), 1e-12), 0.0, 1.0);
+    best = std::min(best, (poly[j] + t * d - p).norm());
+  }
+  return best;
+}
 
 World::World(Scenario scenario, core::OccupancyGrid static_map)
     : scenario_(std::move(scenario)), static_map_(std::move(static_map)) {
@@ -85,10 +118,12 @@ core::Status World::Check() const {
                                  what);
   };
   for (size_t k = 0; k < scenario_.objects.size(); ++k) {
-    for (const Eigen::Vector2d& p : scenario_.objects[k].polygon_m) {
+    const SemiStaticObject& o = scenario_.objects[k];
+    for (const Eigen::Vector2d& p : o.polygon_m) {
       if (!inside(p))
-        return error(scenario_.objects[k].line, Field("objects", k, "polygon"),
-                     "lies outside the map");
+        return error(o.line, Field("objects", k, o.shape_field),
+                     "object '" + o.id + "' spans " + Extent(o.polygon_m) + ", beyond the map (" +
+                         MapExtent(g) + ")");
     }
   }
   for (size_t v = 0; v < scenario_.vehicles.size(); ++v) {
@@ -114,6 +149,33 @@ core::Status World::Check() const {
     for (const Eigen::Vector2d& p : scenario_.actors[a].path_m) {
       if (!inside(p))
         return error(scenario_.actors[a].line, Field("actors", a, "path"), "leaves the map");
+    }
+    FLEETMAP_RETURN_IF_ERROR(CheckActorClearOfObjects(a));
+  }
+  return core::OkStatus();
+}
+
+// People and forklifts walk around pallets, not through them: a path that crosses an object
+// (at any time of the run) is a mistake in the scenario.
+core::Status World::CheckActorClearOfObjects(size_t a) const {
+  const DynamicActor& actor = scenario_.actors[a];
+  const auto& path = actor.path_m;
+  const double step = geometry().resolution_m() / 2;
+  for (size_t i = 0; i + 1 < path.size() + (actor.motion.loop ? 1 : 0); ++i) {
+    const Eigen::Vector2d from = path[i], to = path[(i + 1) % path.size()];
+    const int steps = static_cast<int>((to - from).norm() / step) + 1;
+    for (int s = 0; s <= steps; ++s) {
+      const Eigen::Vector2d p = from + (to - from) * (double(s) / steps);
+      for (const SemiStaticObject& o : scenario_.objects) {
+        if (DistanceToPolygon(o.polygon_m, p) >= actor.radius_m) continue;
+        char where[64];
+        std::snprintf(where, sizeof(where), "(%.2f, %.2f)", p.x(), p.y());
+        return core::InvalidArgument(
+            scenario_.path + ":" + std::to_string(actor.line) + ": " + Field("actors", a, "path") +
+            " leg " + std::to_string(i) + ": " + actor.kind + " '" + actor.id + "' (radius " +
+            std::to_string(actor.radius_m).substr(0, 4) + " m) runs into object '" + o.id +
+            "' at " + where + ": route it around");
+      }
     }
   }
   return core::OkStatus();

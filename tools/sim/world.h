@@ -51,6 +51,7 @@ class World {
  private:
   World(Scenario scenario, core::OccupancyGrid static_map);
   core::Status Check() const;
+  core::Status CheckActorClearOfObjects(size_t actor) const;
 
   Scenario scenario_;
   core::OccupancyGrid static_map_;

@@ -1,0 +1,115 @@
+#include "tools/worldgen/scenario_writer.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/map_io.h"
+#include "tests/support/data_dir.h"
+#include "tools/sim/world.h"
+#include "tools/worldgen/free_space.h"
+#include "tools/worldgen/world_generator.h"
+
+namespace fleetmap::worldgen {
+namespace {
+
+using ::testing::HasSubstr;
+
+core::OccupancyGrid Warehouse(uint64_t seed) {
+  WorldOptions o;
+  o.style = BuildingStyle::kRackedWarehouse;
+  o.seed = seed;
+  o.length_m = 45;
+  o.width_m = 30;
+  o.render.rotation_rad = 0.3;
+  return GenerateWorld(o).value().map.grid;
+}
+
+// Every point of every leg of every vehicle's loop.
+template <typename Fn>
+void ForEachRoutePoint(const sim::Scenario& s, Fn fn) {
+  for (const sim::VehicleSpec& v : s.vehicles)
+    for (size_t i = 0; i < v.route_m.size(); ++i) {
+      const Eigen::Vector2d a = v.route_m[i], b = v.route_m[(i + 1) % v.route_m.size()];
+      for (int k = 0; k <= 100; ++k) fn(a + (b - a) * (k / 100.0));
+    }
+}
+
+TEST(ScenarioWriterTest, RoutesKeepTheirClearanceAndEveryChangeIsPassedAfterwards) {
+  const core::OccupancyGrid map = Warehouse(4);
+  ScenarioOptions o;
+  o.seed = 9;
+  auto s = WriteScenarioFor(map, "warehouse.yaml", o);
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  ASSERT_EQ(s->vehicles.size(), 3u);
+  EXPECT_EQ(s->vehicles[1].scanner.name, "microScan3");
+  // Routes keep (nearly: the planning grid is 0.1 m) their 0.6 m from walls and unknown space.
+  auto clear = FreeSpace::Of(map, o.vehicle_clearance_m - 0.1);
+  ASSERT_TRUE(clear.ok());
+  int points = 0;
+  ForEachRoutePoint(*s, [&](const Eigen::Vector2d& p) {
+    ++points;
+    EXPECT_TRUE(clear->Contains(p)) << p.transpose();
+  });
+  EXPECT_GT(points, 0);
+
+  auto world = sim::World::Create(*s, map);
+  ASSERT_TRUE(world.ok()) << world.status().ToString();
+  ASSERT_EQ(s->objects.size(), 5u);
+  for (const sim::SemiStaticObject& obj : s->objects) {
+    SCOPED_TRACE(obj.id);
+    const double changed = std::isfinite(obj.disappear_s) ? obj.disappear_s : obj.appear_s;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const auto& p : obj.polygon_m) centre += p / obj.polygon_m.size();
+    // Some vehicle drives by (within 5 m) after the change.
+    bool seen_after = false;
+    for (size_t v = 0; v < s->vehicles.size() && !seen_after; ++v)
+      for (double t = changed + 1; t < s->duration_s && !seen_after; t += 0.5)
+        seen_after = (world->VehicleStateAt(v, t).pose.translation() - centre).norm() < 5.0;
+    EXPECT_TRUE(seen_after);
+  }
+  ASSERT_EQ(s->actors.size(), 3u);
+  EXPECT_EQ(s->actors[2].kind, "forklift");     // a warehouse has room for one
+  EXPECT_GT(s->actors[2].motion.dwell_s, 0.0);  // it stops
+  EXPECT_GT(s->actors[1].motion.dwell_s, 0.0);  // a person who stands a while
+}
+
+TEST(ScenarioWriterTest, TheSameSeedWritesTheSameScenario) {
+  const core::OccupancyGrid map = Warehouse(2);
+  ScenarioOptions o;
+  o.seed = 5;
+  auto a = WriteScenarioFor(map, "m.yaml", o), b = WriteScenarioFor(map, "m.yaml", o);
+  ASSERT_TRUE(a.ok()) << a.status().ToString();
+  ASSERT_TRUE(b.ok()) << b.status().ToString();
+  EXPECT_EQ(sim::ScenarioToYaml(*a, "m.yaml"), sim::ScenarioToYaml(*b, "m.yaml"));
+  o.seed = 6;
+  auto c = WriteScenarioFor(map, "m.yaml", o);
+  ASSERT_TRUE(c.ok());
+  EXPECT_NE(sim::ScenarioToYaml(*a, "m.yaml"), sim::ScenarioToYaml(*c, "m.yaml"));
+}
+
+TEST(ScenarioWriterTest, WritesAScenarioForAPublicMapOfARealWarehouse) {
+  const std::string rel = "worlds/mvsim_warehouse/mvsim_warehouse.yaml";
+  FLEETMAP_SKIP_WITHOUT_DATA(rel);
+  auto map = core::LoadMapServerMap(testing::DataPath(rel));
+  ASSERT_TRUE(map.ok()) << map.status().ToString();
+  ScenarioOptions o;
+  o.vehicles = 2;
+  auto s = WriteScenarioFor(map->grid, testing::DataPath(rel), o);
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  EXPECT_EQ(s->vehicles.size(), 2u);
+  EXPECT_TRUE(sim::World::Create(*s, map->grid).ok());
+}
+
+TEST(ScenarioWriterTest, AMapWithoutRoomIsRefusedWithTheReason) {
+  core::OccupancyGrid unknown(core::GridGeometry(0.05, 200, 200));  // nothing observed
+  auto s = WriteScenarioFor(unknown, "m.yaml", ScenarioOptions{});
+  ASSERT_FALSE(s.ok());
+  EXPECT_THAT(s.status().message(), HasSubstr("no free space"));
+  ScenarioOptions bad;
+  bad.vehicles = 9;
+  EXPECT_THAT(WriteScenarioFor(unknown, "m.yaml", bad).status().message(),
+              HasSubstr("vehicles must be 1 to 5"));
+}
+
+}  // namespace
+}  // namespace fleetmap::worldgen
