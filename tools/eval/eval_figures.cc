@@ -53,16 +53,74 @@ void Paint(cv::Mat& img, int height, int64_t index, int width, int scale, const 
                 cv::Scalar(color[0], color[1], color[2]), cv::FILLED);
 }
 
-// The picture with a white band below it holding `text`, so no legend hides the map.
+// The picture with a white band below it holding `text`, so no legend hides the map; the
+// text wraps (at runs of three spaces, between entries, where it can) to the picture's width.
 cv::Mat WithLegend(const cv::Mat& img, const std::string& text) {
-  cv::Mat out(img.rows + 28, img.cols, CV_8UC3, cv::Scalar(255, 255, 255));
+  constexpr double kScale = 0.5;
+  constexpr int kLine = 20;
+  std::vector<std::string> entries;
+  for (size_t from = 0; from < text.size();) {
+    const size_t gap = text.find("   ", from);
+    entries.push_back(text.substr(from, gap == std::string::npos ? std::string::npos : gap - from));
+    from = gap == std::string::npos ? text.size() : text.find_first_not_of(' ', gap);
+  }
+  std::vector<std::string> lines(1);
+  for (const std::string& e : entries) {
+    const std::string longer = lines.back().empty() ? e : lines.back() + "   " + e;
+    int baseline = 0;
+    const int width = cv::getTextSize(longer, cv::FONT_HERSHEY_SIMPLEX, kScale, 1, &baseline).width;
+    if (width + 16 > img.cols && !lines.back().empty()) {
+      lines.push_back(e);
+    } else {
+      lines.back() = longer;
+    }
+  }
+  cv::Mat out(img.rows + 8 + kLine * static_cast<int>(lines.size()), img.cols, CV_8UC3,
+              cv::Scalar(255, 255, 255));
   img.copyTo(out(cv::Rect(0, 0, img.cols, img.rows)));
-  cv::putText(out, text, {8, img.rows + 19}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {0, 0, 0}, 1,
-              cv::LINE_AA);
+  for (size_t i = 0; i < lines.size(); ++i)
+    cv::putText(out, lines[i], {8, img.rows + 19 + kLine * static_cast<int>(i)},
+                cv::FONT_HERSHEY_SIMPLEX, kScale, {0, 0, 0}, 1, cv::LINE_AA);
   return out;
 }
 
+cv::Vec3b ColourOf(OverlayClass k) {  // BGR
+  switch (k) {
+    case OverlayClass::kAddedOk:
+      return {0, 180, 0};  // green
+    case OverlayClass::kFalseAdded:
+      return {0, 0, 230};  // red
+    case OverlayClass::kMissed:
+      return {230, 0, 0};  // blue
+    case OverlayClass::kRemovedOk:
+      return {220, 200, 0};  // cyan
+    case OverlayClass::kFalseRemoval:
+      return {220, 0, 220};  // magenta
+    case OverlayClass::kMissedRemoval:
+      return {0, 140, 255};  // orange
+    case OverlayClass::kWallErased:
+      return {0, 220, 255};  // yellow
+    case OverlayClass::kActorMapped:
+      return {200, 0, 120};  // purple
+    case OverlayClass::kNone:
+      break;
+  }
+  return {0, 0, 0};
+}
+
 }  // namespace
+
+OverlayClass ClassifyOverlayCell(const OverlayCell& c) {
+  if (c.is_static) return c.occupied ? OverlayClass::kNone : OverlayClass::kWallErased;
+  if (c.actor_swept && !c.true_added && (c.occupied || c.ever_occupied))
+    return OverlayClass::kActorMapped;
+  if (c.occupied) return c.true_added ? OverlayClass::kAddedOk : OverlayClass::kFalseAdded;
+  if (c.true_added) return OverlayClass::kMissed;
+  if (c.ever_occupied)
+    return c.true_removed ? OverlayClass::kRemovedOk : OverlayClass::kFalseRemoval;
+  if (c.true_removed) return OverlayClass::kMissedRemoval;
+  return OverlayClass::kNone;
+}
 
 core::Status WriteOverlayPng(const sim::World& world, const sim::ObservationLog& observations,
                              const RunRecord& run, const std::string& path) {
@@ -72,36 +130,22 @@ core::Status WriteOverlayPng(const sim::World& world, const sim::ObservationLog&
   const core::TriStateClassifier classify;
   const std::vector<uint8_t> swept = ActorSweptCells(world, 0.05);
   for (int64_t i = 0; i < g.num_cells(); ++i) {
-    const bool is_static = classify(world.static_map().cells()[i]) == core::CellState::kOccupied;
-    const bool occupied = classify(run.final_map.cells()[i]) == core::CellState::kOccupied;
-    const bool ever = !run.ever_occupied.empty() && run.ever_occupied[i];
+    OverlayCell c;
+    c.is_static = classify(world.static_map().cells()[i]) == core::CellState::kOccupied;
+    c.occupied = classify(run.final_map.cells()[i]) == core::CellState::kOccupied;
+    c.ever_occupied = !run.ever_occupied.empty() && run.ever_occupied[i];
     const sim::CellObservations* o = observations.Cell(i);
     const core::CellState truth = o ? o->LastState() : core::CellState::kUnknown;
-    const bool true_added = truth == core::CellState::kOccupied && !is_static;
-    const bool true_removed = o && o->ever_hit && truth == core::CellState::kFree;
-    cv::Vec3b color;
-    if (is_static) {
-      if (occupied) continue;
-      color = {0, 220, 255};  // yellow: a wall erased
-    } else if (occupied) {
-      color = true_added       ? cv::Vec3b{0, 180, 0}
-              : swept[i] && !o ? cv::Vec3b{200, 0, 120}
-                               : cv::Vec3b{0, 0, 230};
-    } else if (true_added) {
-      color = {230, 0, 0};  // blue: missed
-    } else if (ever) {
-      color = true_removed ? cv::Vec3b{220, 200, 0} : cv::Vec3b{220, 0, 220};
-    } else if (true_removed) {
-      color = {0, 140, 255};  // orange: a removal not made
-    } else {
-      continue;
-    }
-    Paint(img, g.height(), i, g.width(), scale, color);
+    c.true_added = truth == core::CellState::kOccupied && !c.is_static;
+    c.true_removed = o && o->ever_hit && truth == core::CellState::kFree;
+    c.actor_swept = swept[i];
+    const OverlayClass k = ClassifyOverlayCell(c);
+    if (k != OverlayClass::kNone) Paint(img, g.height(), i, g.width(), scale, ColourOf(k));
   }
   return SaveMat(WithLegend(img,
                             "green: added ok   red: false   blue: missed   cyan: removed ok   "
                             "magenta: false removal   orange: missed removal   yellow: wall "
-                            "erased   purple: actor mapped"),
+                            "erased   purple: actor mapped at any time"),
                  path);
 }
 

@@ -9,9 +9,33 @@
 
 namespace fleetmap::eval {
 
+// What the overlay knows of one cell.
+struct OverlayCell {
+  bool is_static = false;      // occupied in the static map
+  bool occupied = false;       // occupied in the final map
+  bool ever_occupied = false;  // occupied in the current map at some time of the run
+  bool true_added = false;     // truly occupied at the end and not static (an object)
+  bool true_removed = false;   // seen occupied by a scanner, truly free at the end
+  bool actor_swept = false;    // a person's or forklift's disc covered it at some time
+};
+enum class OverlayClass {
+  kNone,
+  kAddedOk,
+  kFalseAdded,
+  kMissed,
+  kRemovedOk,
+  kFalseRemoval,
+  kMissedRemoval,
+  kWallErased,
+  kActorMapped,
+};
+// One class per cell. An actor's cell that was mapped at any time, whether still in the final
+// map or removed again, is kActorMapped (never a false addition or a false removal).
+OverlayClass ClassifyOverlayCell(const OverlayCell& c);
+
 // Grey map; green: correct added, red: false added, blue: missed added; cyan: correct removed,
 // magenta: false removed, orange: missed removed; yellow: static cells erased; purple: actor
-// cells mapped.
+// cells mapped at any time.
 core::Status WriteOverlayPng(const sim::World& world, const sim::ObservationLog& observations,
                              const RunRecord& run, const std::string& path);
 // d(t), w_avg, w_fast and w_slow over time, one panel per vehicle.
