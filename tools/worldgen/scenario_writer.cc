@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "tools/sim/route.h"
 #include "tools/sim/world.h"
@@ -202,6 +203,14 @@ class Writer {
     });
   }
 
+  // The free space for a clearance, made on first use: every person shares one.
+  const core::Result<FreeSpace>& SpaceFor(double clearance_m) {
+    auto it = spaces_.find(clearance_m);
+    if (it == spaces_.end())
+      it = spaces_.emplace(clearance_m, FreeSpace::Of(map_, clearance_m)).first;
+    return it->second;
+  }
+
   // Across a route and back (along it where the room is too narrow), turning at each end;
   // `stands`: waits a few seconds there too.
   core::Result<sim::DynamicActor> PlacePerson(const std::vector<sim::SemiStaticObject>& objects,
@@ -209,7 +218,7 @@ class Writer {
     sim::DynamicActor a;
     a.kind = "person";
     a.radius_m = 0.25;
-    auto walk = FreeSpace::Of(map_, a.radius_m + 0.1);
+    const auto& walk = SpaceFor(a.radius_m + 0.1);
     if (!walk.ok()) return walk.status().WithContext("people");
     for (int i = 0; i < kTries; ++i) {
       const Placement p = OnARoute(routes_, rng_);
@@ -243,7 +252,7 @@ class Writer {
     sim::DynamicActor a;
     a.kind = kind;
     a.radius_m = radius_m;
-    auto drive = FreeSpace::Of(map_, a.radius_m + 0.1);
+    const auto& drive = SpaceFor(a.radius_m + 0.1);
     if (!drive.ok()) return drive.status().WithContext("forklifts");
     for (int i = 0; i < kTries; ++i) {
       const Placement p = OnARoute(routes_, rng_, 6.0);
@@ -268,6 +277,7 @@ class Writer {
   Rng rng_;
   std::vector<Route> routes_;
   std::vector<double> periods_;
+  std::map<double, core::Result<FreeSpace>> spaces_;  // by clearance: each made once
 };
 
 }  // namespace
