@@ -21,10 +21,9 @@ core::Result<FreeSpace> FreeSpace::Of(const core::OccupancyGrid& map, double cle
   s.clearance_m_ = clearance_m;
   const int k = std::max(1, static_cast<int>(std::lround(0.1 / g.resolution_m())));
   s.cell_m_ = k * g.resolution_m();
-  s.origin_ = g.origin().translation();
-  s.yaw_rad_ = g.origin().theta_rad;
   s.width_ = g.width() / k;
   s.height_ = g.height() / k;
+  s.grid_ = core::GridGeometry(s.cell_m_, s.width_, s.height_, g.origin());
   if (s.width_ < 2 || s.height_ < 2) return core::FailedPrecondition("the map is too small");
   cv::Mat inside(s.height_, s.width_, CV_8U, cv::Scalar(0));
   s.free_radius_m_.assign(static_cast<size_t>(s.width_) * s.height_, 0.0f);
@@ -61,18 +60,12 @@ core::Result<FreeSpace> FreeSpace::Of(const core::OccupancyGrid& map, double cle
 double FreeSpace::area_m2() const { return piece_.size() * cell_m_ * cell_m_; }
 
 int FreeSpace::Cell(const Eigen::Vector2d& p) const {
-  const Eigen::Vector2d d = p - origin_;
-  const double c = std::cos(yaw_rad_), s = std::sin(yaw_rad_);
-  const int x = static_cast<int>(std::floor((c * d.x() + s * d.y()) / cell_m_));
-  const int y = static_cast<int>(std::floor((-s * d.x() + c * d.y()) / cell_m_));
-  if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
-  return y * width_ + x;
+  const core::CellIndex c = grid_.WorldToCell(p);
+  return grid_.Contains(c) ? static_cast<int>(grid_.Index(c)) : -1;
 }
 
 Eigen::Vector2d FreeSpace::Centre(int cell) const {
-  const double gx = (cell % width_ + 0.5) * cell_m_, gy = (cell / width_ + 0.5) * cell_m_;
-  const double c = std::cos(yaw_rad_), s = std::sin(yaw_rad_);
-  return origin_ + Eigen::Vector2d(c * gx - s * gy, s * gx + c * gy);
+  return grid_.CellCenter({cell % width_, cell / width_});
 }
 
 bool FreeSpace::Contains(const Eigen::Vector2d& p) const {

@@ -39,9 +39,8 @@ class FreeSpace {
   Eigen::Vector2d Centre(int cell) const;
 
   double clearance_m_ = 0.0;
+  core::GridGeometry grid_;  // the planning grid: the map's, with cells about 0.1 m
   double cell_m_ = 0.1;
-  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();  // map frame, corner of cell 0
-  double yaw_rad_ = 0.0;                              // the map origin's heading
   int width_ = 0, height_ = 0;
   std::vector<float> free_radius_m_;  // per planning cell
   std::vector<uint8_t> inside_;       // per planning cell: in the largest piece

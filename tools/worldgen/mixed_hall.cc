@@ -3,24 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tools/sim/scenario.h"  // DistanceToPolygon
 #include "tools/worldgen/building_style.h"
 
 namespace fleetmap::worldgen {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-bool Inside(const Polyline& polygon, const Eigen::Vector2d& p) {
-  bool in = false;
-  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
 
 // Footprints placed so far, each as a disc that keeps a lane free around it.
 class Placer {
@@ -31,7 +20,8 @@ class Placer {
   bool TryPlace(const Eigen::Vector2d& c, double radius_m) {
     for (int i = 0; i < 8; ++i) {
       const double a = 2 * M_PI * i / 8;
-      if (!Inside(hall_, c + (radius_m + lane_m_) * Eigen::Vector2d(std::cos(a), std::sin(a))))
+      if (sim::DistanceToPolygon(
+              hall_, c + (radius_m + lane_m_) * Eigen::Vector2d(std::cos(a), std::sin(a))) > 0)
         return false;
     }
     for (const auto& [pc, pr] : placed_)
