@@ -48,20 +48,11 @@ void DrawHospital(FloorPlan& plan, Rng& rng) {
   const std::pair<double, double> runs[] = {{t + lobby, station_x - station_gap / 2},
                                             {station_x + station_gap / 2, length_m - t}};
   for (size_t i = 0; i < corridors.size(); ++i) {
-    const double below_far = i == 0 ? t : (corridors[i - 1] + corridors[i]) / 2;
-    const double above_far =
-        i + 1 == corridors.size() ? width_m - t : (corridors[i] + corridors[i + 1]) / 2;
     for (const auto& [x0, x1] : runs) {
       if (x1 - x0 < row.min_room_m) continue;
       row.x0_m = x0;
       row.x1_m = x1;
-      row.corridor_y_m = corridors[i] - c / 2;
-      row.far_y_m = below_far;
-      AddRoomRow(plan, row, rng, furnish);
-      if (i > 0) plan.AddWall({{x0, below_far}, {x1, below_far}}, row.wall_m);
-      row.corridor_y_m = corridors[i] + c / 2;
-      row.far_y_m = above_far;
-      AddRoomRow(plan, row, rng, furnish);
+      AddRoomsBesideCorridor(plan, row, corridors, i, c, t, width_m - t, rng, furnish);
     }
     // The nurse station stands in the widened stretch, beside the corridor.
     plan.AddTurnedBox("desk", {station_x, corridors[i] + c / 2 + 1.2}, 3.0, 1.0, 0.0);

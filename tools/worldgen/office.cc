@@ -51,19 +51,8 @@ void DrawOffice(FloorPlan& plan, Rng& rng) {
   } else {
     corridors = {width_m / 3, 2 * width_m / 3};
   }
-  for (size_t i = 0; i < corridors.size(); ++i) {
-    const double below_far = i == 0 ? t : (corridors[i - 1] + corridors[i]) / 2;
-    const double above_far =
-        i + 1 == corridors.size() ? width_m - t : (corridors[i] + corridors[i + 1]) / 2;
-    row.corridor_y_m = corridors[i] - c / 2;
-    row.far_y_m = below_far;
-    AddRoomRow(plan, row, rng, furnish);
-    // Rooms back to back between two corridors share a wall.
-    if (i > 0) plan.AddWall({{row.x0_m, below_far}, {row.x1_m, below_far}}, row.wall_m);
-    row.corridor_y_m = corridors[i] + c / 2;
-    row.far_y_m = above_far;
-    AddRoomRow(plan, row, rng, furnish);
-  }
+  for (size_t i = 0; i < corridors.size(); ++i)
+    AddRoomsBesideCorridor(plan, row, corridors, i, c, t, width_m - t, rng, furnish);
   if (open_plan > 0)
     AddDeskIslands(plan, length_m - t - open_plan, length_m - t, t, width_m - t, rng);
   // A reception desk in the lobby.

@@ -25,4 +25,20 @@ void AddRoomRow(FloorPlan& plan, const RoomRowOptions& o, Rng& rng,
   plan.AddWall({{o.x1_m, o.corridor_y_m}, {o.x1_m, o.far_y_m}}, o.wall_m);
 }
 
+void AddRoomsBesideCorridor(FloorPlan& plan, RoomRowOptions row,
+                            const std::vector<double>& corridors_y_m, size_t i, double corridor_m,
+                            double y_min_m, double y_max_m, Rng& rng,
+                            const std::function<void(const Room&)>& furnish) {
+  const std::vector<double>& c = corridors_y_m;
+  const double below_far = i == 0 ? y_min_m : (c[i - 1] + c[i]) / 2;
+  const double above_far = i + 1 == c.size() ? y_max_m : (c[i] + c[i + 1]) / 2;
+  row.corridor_y_m = c[i] - corridor_m / 2;
+  row.far_y_m = below_far;
+  AddRoomRow(plan, row, rng, furnish);
+  if (i > 0) plan.AddWall({{row.x0_m, below_far}, {row.x1_m, below_far}}, row.wall_m);
+  row.corridor_y_m = c[i] + corridor_m / 2;
+  row.far_y_m = above_far;
+  AddRoomRow(plan, row, rng, furnish);
+}
+
 }  // namespace fleetmap::worldgen

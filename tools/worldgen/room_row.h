@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
 #include "tools/worldgen/floor_plan.h"
 #include "tools/worldgen/random.h"
@@ -26,5 +27,14 @@ struct Room {
 // Draws the corridor wall with a door per room and the partitions; calls `furnish` per room.
 void AddRoomRow(FloorPlan& plan, const RoomRowOptions& o, Rng& rng,
                 const std::function<void(const Room&)>& furnish);
+
+// Rooms on both sides of corridor `i` of `corridors_y_m` (centre lines across the building,
+// ascending, each `corridor_m` wide), between `row.x0_m` and `row.x1_m`: the outer rows reach
+// the envelope (its inner faces at y_min_m and y_max_m), rows between two corridors meet back
+// to back at a shared wall halfway.
+void AddRoomsBesideCorridor(FloorPlan& plan, RoomRowOptions row,
+                            const std::vector<double>& corridors_y_m, size_t i, double corridor_m,
+                            double y_min_m, double y_max_m, Rng& rng,
+                            const std::function<void(const Room&)>& furnish);
 
 }  // namespace fleetmap::worldgen
