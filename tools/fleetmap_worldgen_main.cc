@@ -30,17 +30,21 @@ int WriteScenario(const core::OccupancyGrid& map, const std::string& map_yaml,
                   const std::string& path, const std::string& name,
                   const worldgen::ScenarioOptions& options) {
   std::error_code ec;
-  auto scenario = worldgen::WriteScenarioFor(map, fs::absolute(map_yaml, ec).string(), options);
-  if (scenario.ok()) scenario->name = name;
-  const core::Status saved = scenario.ok() ? sim::SaveScenario(*scenario, path) : scenario.status();
+  auto written = worldgen::WriteScenarioFor(map, fs::absolute(map_yaml, ec).string(), options);
+  if (written.ok()) written->scenario.name = name;
+  const core::Status saved =
+      written.ok() ? sim::SaveScenario(written->scenario, path) : written.status();
   if (!saved.ok()) {
     std::fprintf(stderr, "fleetmap-worldgen: %s: %s\n", map_yaml.c_str(), saved.ToString().c_str());
     return 1;
   }
+  const sim::Scenario& scenario = written->scenario;
   std::printf(
       "worldgen: scenario %s: %zu vehicles, %zu objects, %zu people and forklifts, %.0f s -> %s\n",
-      scenario->name.c_str(), scenario->vehicles.size(), scenario->objects.size(),
-      scenario->actors.size(), scenario->duration_s, path.c_str());
+      scenario.name.c_str(), scenario.vehicles.size(), scenario.objects.size(),
+      scenario.actors.size(), scenario.duration_s, path.c_str());
+  if (!written->fitted.empty())
+    std::printf("worldgen: the floor is small for the asked fleet: %s\n", written->fitted.c_str());
   return 0;
 }
 
@@ -82,6 +86,10 @@ int Run(int argc, char** argv) {
   app.add_option("--people", so.people, "people crossing the routes")->capture_default_str();
   app.add_option("--forklifts", so.forklifts, "forklifts driving along routes")
       ->capture_default_str();
+  bool exact_fleet = false;
+  app.add_flag("--exact-fleet", exact_fleet,
+               "refuse a floor too small for the asked fleet (default: fewer vehicles, then no "
+               "forklift)");
   app.add_option("OUT.yaml", out,
                  "the map to write (image OUT.pgm, picture OUT.png, scenario "
                  "OUT_scenario.yaml); with --scenario-for, the scenario");
@@ -93,6 +101,7 @@ int Run(int argc, char** argv) {
     std::fprintf(stderr, "fleetmap-worldgen: %s (see --help)\n", e.what());
     return 2;
   }
+  so.fit_to_floor = !exact_fleet;
   if (list) {
     for (worldgen::BuildingStyle s : worldgen::AllBuildingStyles()) {
       const worldgen::SizeRange r = worldgen::DefaultSize(s);

@@ -38,8 +38,10 @@ TEST(ScenarioWriterTest, RoutesKeepTheirClearanceAndEveryChangeIsPassedAfterward
   const core::OccupancyGrid map = Warehouse(4);
   ScenarioOptions o;
   o.seed = 9;
-  auto s = WriteScenarioFor(map, "warehouse.yaml", o);
-  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  auto written = WriteScenarioFor(map, "warehouse.yaml", o);
+  ASSERT_TRUE(written.ok()) << written.status().ToString();
+  EXPECT_EQ(written->fitted, "");
+  const sim::Scenario* s = &written->scenario;
   ASSERT_EQ(s->vehicles.size(), 3u);
   EXPECT_EQ(s->vehicles[1].scanner.name, "microScan3");
   // Routes keep (nearly: the planning grid is 0.1 m) their 0.6 m from walls and unknown space.
@@ -80,11 +82,11 @@ TEST(ScenarioWriterTest, TheSameSeedWritesTheSameScenario) {
   auto a = WriteScenarioFor(map, "m.yaml", o), b = WriteScenarioFor(map, "m.yaml", o);
   ASSERT_TRUE(a.ok()) << a.status().ToString();
   ASSERT_TRUE(b.ok()) << b.status().ToString();
-  EXPECT_EQ(sim::ScenarioToYaml(*a, "m.yaml"), sim::ScenarioToYaml(*b, "m.yaml"));
+  EXPECT_EQ(sim::ScenarioToYaml(a->scenario, "m.yaml"), sim::ScenarioToYaml(b->scenario, "m.yaml"));
   o.seed = 6;
   auto c = WriteScenarioFor(map, "m.yaml", o);
   ASSERT_TRUE(c.ok());
-  EXPECT_NE(sim::ScenarioToYaml(*a, "m.yaml"), sim::ScenarioToYaml(*c, "m.yaml"));
+  EXPECT_NE(sim::ScenarioToYaml(a->scenario, "m.yaml"), sim::ScenarioToYaml(c->scenario, "m.yaml"));
 }
 
 TEST(ScenarioWriterTest, WritesAScenarioForAPublicMapOfARealWarehouse) {
@@ -96,8 +98,28 @@ TEST(ScenarioWriterTest, WritesAScenarioForAPublicMapOfARealWarehouse) {
   o.vehicles = 2;
   auto s = WriteScenarioFor(map->grid, testing::DataPath(rel), o);
   ASSERT_TRUE(s.ok()) << s.status().ToString();
-  EXPECT_EQ(s->vehicles.size(), 2u);
-  EXPECT_TRUE(sim::World::Create(*s, map->grid).ok());
+  EXPECT_EQ(s->scenario.vehicles.size(), 2u);
+  EXPECT_TRUE(sim::World::Create(s->scenario, map->grid).ok());
+}
+
+// A shop of 15 x 15 m has no room for three vehicles' loops and a pallet beside each: the
+// writer fits a smaller fleet and says so, or refuses with the reason when told not to.
+TEST(ScenarioWriterTest, ASmallFloorGetsASmallerFleetAndSaysSo) {
+  const std::string rel = "worlds/aws_bookstore/map.yaml";
+  FLEETMAP_SKIP_WITHOUT_DATA(rel);
+  auto map = core::LoadMapServerMap(testing::DataPath(rel));
+  ASSERT_TRUE(map.ok()) << map.status().ToString();
+  ScenarioOptions o;
+  auto s = WriteScenarioFor(map->grid, testing::DataPath(rel), o);
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  EXPECT_LT(s->scenario.vehicles.size(), 3u);
+  EXPECT_THAT(s->fitted, HasSubstr("instead of 3"));
+  EXPECT_FALSE(s->scenario.objects.empty());
+  EXPECT_TRUE(sim::World::Create(s->scenario, map->grid).ok());
+  o.fit_to_floor = false;
+  auto refused = WriteScenarioFor(map->grid, testing::DataPath(rel), o);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_THAT(refused.status().message(), HasSubstr("no room"));
 }
 
 TEST(ScenarioWriterTest, AMapWithoutRoomIsRefusedWithTheReason) {

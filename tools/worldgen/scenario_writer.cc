@@ -78,6 +78,10 @@ core::Result<Route> PlanLoop(const FreeSpace& space, double budget_m, Rng& rng) 
                                   " m fits the free space");
 }
 
+double LoopBudget(const ScenarioOptions& o) {
+  return o.max_loop_m > 0 ? o.max_loop_m : o.vehicle_speed_mps * o.duration_s / 2.5;
+}
+
 struct Placement {
   Eigen::Vector2d at, along;  // a point on a route and the route's direction there
   size_t vehicle;
@@ -109,7 +113,7 @@ class Writer {
     if (!drive.ok()) return drive.status().WithContext("vehicles");
     auto floor = FreeSpace::Of(map_, 0.05);
     if (!floor.ok()) return floor.status();
-    const double budget = o_.vehicle_speed_mps * o_.duration_s / 2.5;
+    const double budget = LoopBudget(o_);
     for (int v = 0; v < o_.vehicles; ++v) {
       auto route = PlanLoop(*drive, budget, rng_);
       if (!route.ok()) return route.status();
@@ -285,19 +289,20 @@ class Writer {
 core::Status ScenarioOptions::Validate() const {
   if (vehicles < 1 || vehicles > 5) return core::InvalidArgument("vehicles must be 1 to 5");
   if (!(duration_s > 0) || !(vehicle_speed_mps > 0) || !(vehicle_clearance_m > 0) ||
-      !(object_gap_m >= 0))
+      !(object_gap_m >= 0) || !(max_loop_m >= 0))
     return core::InvalidArgument(
         "duration_s, vehicle_speed_mps and vehicle_clearance_m must be positive, object_gap_m "
-        "not negative");
+        "and max_loop_m not negative");
   if (objects_added < 0 || objects_removed < 0 || people < 0 || forklifts < 0)
     return core::InvalidArgument("counts of objects, people and forklifts must not be negative");
   return core::OkStatus();
 }
 
-core::Result<sim::Scenario> WriteScenarioFor(const core::OccupancyGrid& map,
-                                             const std::string& map_yaml,
-                                             const ScenarioOptions& options) {
-  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+namespace {
+
+core::Result<sim::Scenario> WriteChecked(const core::OccupancyGrid& map,
+                                         const std::string& map_yaml,
+                                         const ScenarioOptions& options) {
   Writer writer(map, options);
   auto scenario = writer.Write(map_yaml);
   if (!scenario.ok()) return scenario;
@@ -306,6 +311,60 @@ core::Result<sim::Scenario> WriteScenarioFor(const core::OccupancyGrid& map,
   auto world = sim::World::Create(*scenario, map);
   if (!world.ok()) return world.status().WithContext("generated scenario");
   return scenario;
+}
+
+// The next smaller fleet to try on a floor where `o` did not fit; false when none is left.
+bool Smaller(const ScenarioOptions& asked, ScenarioOptions& o) {
+  if (o.vehicles > 1) {
+    --o.vehicles;
+    return true;
+  }
+  if (o.objects_added > 1) {
+    --o.objects_added;
+    return true;
+  }
+  if (LoopBudget(o) > LoopBudget(asked) / 3) {
+    o.max_loop_m = LoopBudget(o) / 2;
+    return true;
+  }
+  if (o.forklifts > 0) {
+    o.forklifts = 0;
+    return true;
+  }
+  return false;
+}
+
+std::string Fitted(const ScenarioOptions& asked, const ScenarioOptions& used) {
+  std::string fitted;
+  if (used.vehicles != asked.vehicles)
+    fitted =
+        std::to_string(used.vehicles) + " vehicle(s) instead of " + std::to_string(asked.vehicles);
+  if (used.objects_added != asked.objects_added)
+    fitted += (fitted.empty() ? "" : ", ") + std::to_string(used.objects_added) +
+              " object(s) appearing instead of " + std::to_string(asked.objects_added);
+  if (LoopBudget(used) != LoopBudget(asked))
+    fitted += (fitted.empty() ? "" : ", ") + std::string("loops up to ") +
+              std::to_string(static_cast<int>(LoopBudget(used))) + " m";
+  if (used.forklifts != asked.forklifts)
+    fitted += (fitted.empty() ? "" : ", ") + std::string("no forklift");
+  return fitted;
+}
+
+}  // namespace
+
+core::Result<WrittenScenario> WriteScenarioFor(const core::OccupancyGrid& map,
+                                               const std::string& map_yaml,
+                                               const ScenarioOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  ScenarioOptions tried = options;
+  auto scenario = WriteChecked(map, map_yaml, tried);
+  // The first refusal is the one reported: it names what the asked-for fleet lacks.
+  const core::Status first = scenario.status();
+  while (!scenario.ok() && scenario.status().code() == core::StatusCode::kFailedPrecondition &&
+         options.fit_to_floor && Smaller(options, tried))
+    scenario = WriteChecked(map, map_yaml, tried);
+  if (!scenario.ok()) return first;
+  return WrittenScenario{std::move(*scenario), Fitted(options, tried)};
 }
 
 }  // namespace fleetmap::worldgen
