@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <optional>
 
 namespace fleetmap::aggregator {
@@ -23,7 +24,12 @@ class Planner {
  public:
   Planner(const PlacedEvidence& e, const TimeSpan& span, const MergeInputs& in,
           const MergeOptions& o)
-      : e_(e), w_(e.window), span_(span), in_(in), o_(o) {}
+      : e_(e),
+        w_(e.window),
+        span_(span),
+        in_(in),
+        o_(o),
+        cells_(MergeCellsFor(o, e.resolution_m)) {}
 
   MergePlan Run() {
     std::vector<std::optional<CellChangeKind>> decided(static_cast<size_t>(w_.num_cells()));
@@ -75,7 +81,7 @@ class Planner {
   // A candidate at or near (x, y) that confirms.
   bool EarlierSightingNear(int x, int y) const {
     auto confirms = [&](int nx, int ny) { return Confirms(nx, ny); };
-    return confirms(x, y) || AnyNear(x, y, o_.confirm_radius_cells, confirms);
+    return confirms(x, y) || AnyNear(x, y, cells_.confirm_radius, confirms);
   }
   // A candidate that can no longer be confirmed or dropped by a map this late.
   bool Stale(int x, int y) const {
@@ -87,7 +93,7 @@ class Planner {
   // semi-static neighbour seen free as well (a map a little off may see a strip of a pallet
   // that is still there free; one taken away leaves its whole neighbourhood free).
   std::optional<CellChangeKind> DecideSemiStatic(int x, int y) const {
-    const int r = o_.removal_clearance_cells;
+    const int r = cells_.removal_clearance;
     if (e_.at({x, y}) > o_.remove_max_log_odds) return std::nullopt;
     const bool blocked = AnyNear(x, y, r, [&](int nx, int ny) {
       return Strong(nx, ny) || (Semi(nx, ny) && e_.at({nx, ny}) >= 0.0f);
@@ -105,7 +111,7 @@ class Planner {
     if (seen && EarlierSightingNear(x, y)) return CellChangeKind::kAdded;
     // A candidate whose neighbourhood this map sees occupied at another time.
     if (candidate && EarlierSightingNear(x, y) &&
-        AnyNear(x, y, o_.confirm_radius_cells, [&](int nx, int ny) { return Strong(nx, ny); })) {
+        AnyNear(x, y, cells_.confirm_radius, [&](int nx, int ny) { return Strong(nx, ny); })) {
       return CellChangeKind::kAdded;
     }
     // First seen, or seen again too late to confirm: a candidate from this map on.
@@ -125,7 +131,7 @@ class Planner {
     while (!stack.empty()) {
       const auto [x, y] = stack.back();
       stack.pop_back();
-      AnyNear(x, y, o_.confirm_radius_cells, [&](int nx, int ny) {
+      AnyNear(x, y, cells_.confirm_radius, [&](int nx, int ny) {
         auto& d = decided[Local(nx, ny)];
         if (Semi(nx, ny) || d == CellChangeKind::kAdded || !Seen(nx, ny)) return false;
         d = CellChangeKind::kAdded;
@@ -180,6 +186,7 @@ class Planner {
   TimeSpan span_;
   const MergeInputs& in_;
   const MergeOptions& o_;
+  const MergeCells cells_;
 };
 
 }  // namespace
@@ -189,16 +196,16 @@ core::Status MergeOptions::Validate() const {
   if (!(add_min_log_odds > 0)) return core::InvalidArgument("merge.add_min_log_odds must be > 0");
   if (!(remove_max_log_odds < 0))
     return core::InvalidArgument("merge.remove_max_log_odds must be < 0");
-  if (static_clearance_cells < 0 || static_clearance_cells > 10)
-    return core::InvalidArgument("merge.static_clearance_cells must be in [0, 10]");
+  if (!(static_clearance_m >= 0 && static_clearance_m <= 0.5))
+    return core::InvalidArgument("merge.static_clearance_m must be in [0, 0.5] m");
   if (min_occupied_neighbours < 0 || min_occupied_neighbours > 8)
     return core::InvalidArgument("merge.min_occupied_neighbours must be in [0, 8]");
-  if (removal_clearance_cells < 0 || removal_clearance_cells > 10)
-    return core::InvalidArgument("merge.removal_clearance_cells must be in [0, 10]");
+  if (!(removal_clearance_m >= 0 && removal_clearance_m <= 0.5))
+    return core::InvalidArgument("merge.removal_clearance_m must be in [0, 0.5] m");
   if (confirmations < 1 || confirmations > 2)
     return core::InvalidArgument("merge.confirmations must be 1 or 2");
-  if (confirm_radius_cells < 0 || confirm_radius_cells > 3)
-    return core::InvalidArgument("merge.confirm_radius_cells must be in [0, 3]");
+  if (!(confirm_radius_m >= 0 && confirm_radius_m <= 0.3))
+    return core::InvalidArgument("merge.confirm_radius_m must be in [0, 0.3] m");
   if (!(confirm_min_gap_s >= 0))
     return core::InvalidArgument("merge.confirm_min_gap_s must be >= 0");
   if (!(confirm_max_gap_s > confirm_min_gap_s))
@@ -206,11 +213,22 @@ core::Status MergeOptions::Validate() const {
   return core::OkStatus();
 }
 
+int CellsFor(double distance_m, double resolution_m) {
+  if (!(distance_m > 0) || !(resolution_m > 0)) return 0;
+  return std::max(1, static_cast<int>(std::lround(distance_m / resolution_m)));
+}
+
+MergeCells MergeCellsFor(const MergeOptions& o, double resolution_m) {
+  return {CellsFor(o.static_clearance_m, resolution_m),
+          CellsFor(o.removal_clearance_m, resolution_m),
+          CellsFor(o.confirm_radius_m, resolution_m)};
+}
+
 std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
                                   const MergeOptions& options) {
   const core::TriStateClassifier classify(options.thresholds);
   const int w = static_map.geometry().width(), h = static_map.geometry().height();
-  const int r = options.static_clearance_cells;
+  const int r = CellsFor(options.static_clearance_m, static_map.geometry().resolution_m());
   const std::vector<float>& cells = static_map.cells();
   std::vector<uint8_t> addable(cells.size(), 0);
   for (size_t i = 0; i < cells.size(); ++i)

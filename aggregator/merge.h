@@ -30,27 +30,31 @@ struct MergeOptions {
   // At or below this a semi-static obstacle is removed (< 0): about five free observations
   // (0.4 each) more than hits.
   float remove_max_log_odds = -2.0f;
-  // Cells this close (Chebyshev, cells) to an occupied static cell are never added: range
+  // Distances below are in metres, used on the map's grid as the nearest whole number of
+  // cells (at least one where the distance is > 0; MergeCells): the same building at 3 or
+  // 10 cm keeps the same clearances.
+  // Cells this close (Chebyshev, metres) to an occupied static cell are never added: range
   // noise and a fraction of a cell of alignment error put a wall's hits onto the free cells
-  // in front of it, which are no obstacle. 0..10.
-  int static_clearance_cells = 2;
+  // in front of it, which are no obstacle. 0..0.5 m; 0.10 m is 2 cells at 5 cm.
+  double static_clearance_m = 0.10;
   // An added cell needs this many of its 8 neighbours at add_min_log_odds too, so an
   // isolated hit (a mixed pixel at a depth edge) is no obstacle. 0..8.
   int min_occupied_neighbours = 1;
-  // A semi-static cell is removed only when no cell this close (Chebyshev) holds evidence
-  // at add_min_log_odds and every semi-static cell this close is seen free (< 0) too: the
-  // edge of an obstacle that is still there flickers between hit and passed, and a map a
-  // little off may see a strip of it free; an obstacle taken away leaves its whole
-  // neighbourhood free. 0..10. 2 rather than 1: with 1 the edges of pallets that stay (second
-  // rows of cells, added from a neighbour's sighting) are removed and added again, and 2 loses
-  // no true removal (docs/aggregator.md, "Change detection of the real system").
-  int removal_clearance_cells = 2;
+  // A semi-static cell is removed only when no cell this close (Chebyshev, metres) holds
+  // evidence at add_min_log_odds and every semi-static cell this close is seen free (< 0)
+  // too: the edge of an obstacle that is still there flickers between hit and passed, and a
+  // map a little off may see a strip of it free; an obstacle taken away leaves its whole
+  // neighbourhood free. 0..0.5 m. 0.10 m (2 cells at 5 cm) rather than 0.05: with one cell
+  // the edges of pallets that stay (second rows of cells, added from a neighbour's sighting)
+  // are removed and added again, and two lose no true removal (docs/aggregator.md, "Change
+  // detection of the real system").
+  double removal_clearance_m = 0.10;
   // Temporary maps of different times that must see a cell occupied before it is added:
   // 1 (the paper: at first sight) or 2 (a candidate first, see above).
   int confirmations = 2;
-  // A confirmation may come from evidence this close (Chebyshev, cells): the edge of a
-  // pallet seen from another side or another grid phase falls into the next cell. 0..3.
-  int confirm_radius_cells = 1;
+  // A confirmation may come from evidence this close (Chebyshev, metres): the edge of a
+  // pallet seen from another side or another grid phase falls into the next cell. 0..0.3 m.
+  double confirm_radius_m = 0.05;
   // The two maps must lie at least this far apart in time, seconds >= 0: consecutive maps
   // of one vehicle touch, and a person walking past at that moment is in both.
   double confirm_min_gap_s = 2.0;
@@ -64,7 +68,18 @@ struct MergeOptions {
   core::Status Validate() const;
 };
 
-// Per static cell: 1 where an obstacle may be added (free, and clear of static cells).
+// The distances of MergeOptions in cells of a grid.
+struct MergeCells {
+  int static_clearance = 0;
+  int removal_clearance = 0;
+  int confirm_radius = 0;
+};
+MergeCells MergeCellsFor(const MergeOptions& options, double resolution_m);
+// The nearest whole number of cells to `distance_m`, at least 1 where it is > 0.
+int CellsFor(double distance_m, double resolution_m);
+
+// Per static cell: 1 where an obstacle may be added (free, and clear of static cells by
+// static_clearance_m).
 std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
                                   const MergeOptions& options);
 

@@ -105,6 +105,7 @@ PlacedEvidence PlaceEvidence(const core::TempMap& map, const core::Pose2& correc
   x1 = std::min(x1, s.width() - 1), y1 = std::min(y1, s.height() - 1);
   PlacedEvidence e;
   e.map_width = s.width();
+  e.resolution_m = s.resolution_m();
   if (x1 < x0 || y1 < y0) return e;
   e.window = {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
   e.log_odds.assign(static_cast<size_t>(e.window.num_cells()), 0.0f);

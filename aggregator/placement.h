@@ -29,6 +29,7 @@ core::Status CheckTempMap(const core::TempMap& map, const core::GridGeometry& st
 // The temporary map's evidence on the static map's cells.
 struct PlacedEvidence {
   int map_width = 0;            // the static map's width, for its row-major cell indices
+  double resolution_m = 0.05;   // the static map's cell size
   core::CellWindow window;      // static cells the placed temporary grid covers (clipped)
   std::vector<float> log_odds;  // per window cell, row-major: the temporary cell containing
                                 // the static cell's centre, 0 where there is none

@@ -83,22 +83,36 @@ core::Status ReadLimits(const YamlReader& r, const YAML::Node& n, VehicleLimitOp
   return Read(r, n, "limits", "max_vehicles", o.max_vehicles);
 }
 
+// Keys of earlier versions, in cells, and what replaced them: refused with the new name, so
+// that an old file does not silently mean another distance at another resolution.
+core::Status RefuseCellKeys(const YamlReader& r, const YAML::Node& n, const std::string& s) {
+  for (const char* old : {"static_clearance", "removal_clearance", "confirm_radius"}) {
+    const std::string key = std::string(old) + "_cells";
+    if (n && n.IsMap() && n[key])
+      return r.Error(n[key], s + "." + key,
+                     std::string("is now ") + old + "_m, in metres (2 cells at 0.05 m are 0.10)");
+  }
+  return core::OkStatus();
+}
+
 core::Status ReadMerge(const YamlReader& r, const YAML::Node& n, MergeOptions& o) {
   const std::string s = "aggregator.merge";
+  FLEETMAP_RETURN_IF_ERROR(RefuseCellKeys(r, n, s));
   FLEETMAP_RETURN_IF_ERROR(
       OnlyKeys(r, n, s,
-               {"add_min_log_odds", "remove_max_log_odds", "static_clearance_cells",
-                "min_occupied_neighbours", "removal_clearance_cells", "confirmations",
-                "confirm_radius_cells", "confirm_min_gap_s"}));
+               {"add_min_log_odds", "remove_max_log_odds", "static_clearance_m",
+                "min_occupied_neighbours", "removal_clearance_m", "confirmations",
+                "confirm_radius_m", "confirm_min_gap_s", "confirm_max_gap_s"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "add_min_log_odds", o.add_min_log_odds));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "remove_max_log_odds", o.remove_max_log_odds));
-  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "static_clearance_cells", o.static_clearance_cells));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "static_clearance_m", o.static_clearance_m));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "min_occupied_neighbours", o.min_occupied_neighbours));
-  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "removal_clearance_cells", o.removal_clearance_cells));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "removal_clearance_m", o.removal_clearance_m));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirmations", o.confirmations));
-  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirm_radius_cells", o.confirm_radius_cells));
-  return Read(r, n, s, "confirm_min_gap_s", o.confirm_min_gap_s);
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirm_radius_m", o.confirm_radius_m));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirm_min_gap_s", o.confirm_min_gap_s));
+  return Read(r, n, s, "confirm_max_gap_s", o.confirm_max_gap_s);
 }
 
 core::Status ReadAggregator(const YamlReader& r, const YAML::Node& n, AggregatorOptions& o) {

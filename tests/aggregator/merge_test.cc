@@ -176,7 +176,8 @@ TEST_F(MergeTest, RemovalNeedsTheWholeNeighbourhoodSeenFree) {
 }
 
 // An obstacle still there flickers at its edge: a hit two cells from a semi-static cell keeps
-// it (removal_clearance_cells = 2); with a clearance of one cell it would be removed.
+// it (removal_clearance_m = 0.10 m, 2 cells at 5 cm); with a clearance of one cell it would
+// be removed.
 TEST_F(MergeTest, RemovalKeepsCellsWithinTheClearanceOfAHit) {
   options_.confirmations = 1;
   PlacedEvidence e = Evidence();
@@ -189,8 +190,33 @@ TEST_F(MergeTest, RemovalKeepsCellsWithinTheClearanceOfAHit) {
   const MergePlan kept = Plan(e, {20, 30});
   EXPECT_EQ(kept.removed, 9);  // columns 8-10 go, column 11 stays
   for (const CellChange& c : kept.changes) EXPECT_LT(c.cell % 20, 11) << c.cell;
-  options_.removal_clearance_cells = 1;
+  options_.removal_clearance_m = 0.05;
   EXPECT_EQ(Plan(e, {20, 30}).removed, 12);
+}
+
+// The same distance in metres is the same number of cells' worth at every resolution.
+TEST(MergeOptionsTest, DistancesInMetresBecomeTheNearestWholeCells) {
+  EXPECT_EQ(CellsFor(0.10, 0.05), 2);
+  EXPECT_EQ(CellsFor(0.10, 0.03), 3);
+  EXPECT_EQ(CellsFor(0.10, 0.02), 5);
+  EXPECT_EQ(CellsFor(0.10, 0.10), 1);
+  EXPECT_EQ(CellsFor(0.05, 0.10), 1);  // a distance > 0 is at least one cell
+  EXPECT_EQ(CellsFor(0.0, 0.05), 0);
+  const MergeCells c = MergeCellsFor(MergeOptions{}, 0.05);
+  EXPECT_EQ(c.static_clearance, 2);  // the defaults at 5 cm are those chosen there in cells
+  EXPECT_EQ(c.removal_clearance, 2);
+  EXPECT_EQ(c.confirm_radius, 1);
+}
+
+// A wall at 2 cm keeps a clearance of 0.10 m, five cells, where nothing is added.
+TEST(MergeOptionsTest, TheStaticClearanceIsTheSameDistanceAtAFinerResolution) {
+  core::OccupancyGrid fine(core::GridGeometry(0.02, 20, 20));
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 20; ++x)
+      fine.SetState({x, y}, y == 0 ? core::CellState::kOccupied : core::CellState::kFree);
+  const std::vector<uint8_t> addable = AddableCells(fine, MergeOptions{});
+  EXPECT_EQ(addable[5 * 20 + 10], 0);  // 0.10 m from the wall
+  EXPECT_EQ(addable[6 * 20 + 10], 1);  // 0.12 m
 }
 
 TEST(MergeOptionsTest, ValidateNamesTheBadField) {
@@ -203,6 +229,9 @@ TEST(MergeOptionsTest, ValidateNamesTheBadField) {
   o = {};
   o.confirm_max_gap_s = o.confirm_min_gap_s;
   EXPECT_NE(o.Validate().message().find("confirm_max_gap_s"), std::string::npos);
+  o = {};
+  o.static_clearance_m = 2.0;  // a value in cells where metres are asked
+  EXPECT_NE(o.Validate().message().find("static_clearance_m"), std::string::npos);
 }
 
 // The required behaviour: a removal clears the pallet but not the wall behind it.

@@ -136,8 +136,8 @@ TEST(PlacementOptionsTest, ValidateNamesTheBadField) {
   o.min_inside_fraction = 2;
   EXPECT_NE(o.Validate().message().find("min_inside_fraction"), std::string::npos);
   AggregatorOptions a;
-  a.merge.static_clearance_cells = -1;
-  EXPECT_NE(a.Validate().message().find("static_clearance_cells"), std::string::npos);
+  a.merge.static_clearance_m = -1;
+  EXPECT_NE(a.Validate().message().find("static_clearance_m"), std::string::npos);
   EXPECT_FALSE(Aggregator::Create(testing::HallMap(), a).ok());
 }
 

@@ -48,12 +48,13 @@ TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
   const MergeOptions &m = c->aggregator.merge, &md = d.aggregator.merge;
   EXPECT_EQ(m.add_min_log_odds, md.add_min_log_odds);
   EXPECT_EQ(m.remove_max_log_odds, md.remove_max_log_odds);
-  EXPECT_EQ(m.static_clearance_cells, md.static_clearance_cells);
+  EXPECT_EQ(m.static_clearance_m, md.static_clearance_m);
   EXPECT_EQ(m.min_occupied_neighbours, md.min_occupied_neighbours);
-  EXPECT_EQ(m.removal_clearance_cells, md.removal_clearance_cells);
+  EXPECT_EQ(m.removal_clearance_m, md.removal_clearance_m);
   EXPECT_EQ(m.confirmations, md.confirmations);
-  EXPECT_EQ(m.confirm_radius_cells, md.confirm_radius_cells);
+  EXPECT_EQ(m.confirm_radius_m, md.confirm_radius_m);
   EXPECT_EQ(m.confirm_min_gap_s, md.confirm_min_gap_s);
+  EXPECT_EQ(m.confirm_max_gap_s, md.confirm_max_gap_s);
   EXPECT_EQ(c->aggregator.store.retained_deltas, d.aggregator.store.retained_deltas);
   EXPECT_EQ(c->aggregator.store.tiles.tile_size_cells, d.aggregator.store.tiles.tile_size_cells);
   EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges,
@@ -67,7 +68,7 @@ state_dir: state
 node: {keyframe_period_s: 0, status_period_s: 2.5, max_report_matches: 8}
 assembler: {max_pending_maps: 4, max_tiles: 100}
 aggregator:
-  merge: {confirmations: 1, confirm_min_gap_s: 5}
+  merge: {confirmations: 1, confirm_min_gap_s: 5, confirm_max_gap_s: 40, static_clearance_m: 0.08}
   store: {retained_deltas: 3}
   persistence: {snapshot_every_merges: 7}
 )",
@@ -82,6 +83,8 @@ aggregator:
   EXPECT_EQ(c->node.assembler.max_tiles, 100);
   EXPECT_EQ(c->aggregator.merge.confirmations, 1);
   EXPECT_EQ(c->aggregator.merge.confirm_min_gap_s, 5.0);
+  EXPECT_EQ(c->aggregator.merge.confirm_max_gap_s, 40.0);
+  EXPECT_EQ(c->aggregator.merge.static_clearance_m, 0.08);
   EXPECT_EQ(c->aggregator.store.retained_deltas, 3);
   EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges, 7);
 }
@@ -98,6 +101,13 @@ TEST(AggregatorNodeConfigTest, MistakesNameTheFieldAndTheLine) {
   auto type = ParseProcessConfig("assembler: {max_tiles: lots}", "agg.yaml");
   ASSERT_FALSE(type.ok());
   EXPECT_NE(type.status().message().find("assembler.max_tiles"), std::string::npos);
+  // A key of an earlier version, in cells, names the key in metres that replaced it.
+  auto cells =
+      ParseProcessConfig("aggregator:\n  merge: {static_clearance_cells: 2}\n", "agg.yaml");
+  ASSERT_FALSE(cells.ok());
+  EXPECT_NE(cells.status().message().find("is now static_clearance_m, in metres"),
+            std::string::npos)
+      << cells.status().ToString();
   auto nested = ParseProcessConfig("aggregator: {merge: {confirmation: 1}}", "agg.yaml");
   ASSERT_FALSE(nested.ok());
   EXPECT_NE(nested.status().message().find("aggregator.merge.confirmation: unknown key"),
