@@ -6,6 +6,11 @@
 #   ./run_eval.sh --scenario SCENARIO.yaml [--map MAP.yaml]   your own world
 #   ./run_eval.sh --carmen LOG --relations REL                your own CARMEN log
 #   ./run_eval.sh --build-only                 installs and builds, runs nothing (CI checks it)
+#   ./run_eval.sh --suite [--quick]            the world suite (docs/world_suite.md): 40
+#                  generated buildings and every public map of FLEETMAP_DATA_DIR/worlds, each
+#                  with the pipelines agents and truthmaps, suite.* figures, out/suite/suite.md
+#                  and suite.png; --quick: 8 small worlds, checked against the thresholds of
+#                  tools/suite/quick_thresholds.txt (the test suite runs it)
 # Per scenario: eval.S.* is the real system (vehicle pipelines + aggregator, pipeline
 # "agents"), eval.S.paper_mode.* the same with the paper's alignment, eval.S.truthmaps.* the
 # aggregator alone fed perfect temporary maps with anchor errors up to 0.3 m / 3 deg, and
@@ -14,12 +19,14 @@
 # relations, and checks of the relations themselves (real.L.win60.ref_*, .scan_fit_*:
 # fleetmap-carmen-eval --audit, docs/localization.md).
 # FLEETMAP_EVAL_BUILD_DIR (default build-release) picks the Release build folder;
+# FLEETMAP_EVAL_BIN_DIR: use the programs already built there (no install, no build);
+# FLEETMAP_SUITE_OUT: the suite's output folder (default out/suite, out/suite-quick);
 # FLEETMAP_DATA_DIR (default ../shared/data) holds the real logs, as real/L/L.rebuilt.clf.
 # Pictures and report.json per scenario and pipeline: out/eval/.
 set -euo pipefail
 cd "$(dirname "$0")"
 
-scenario="" map="" carmen="" relations="" build_only=0
+scenario="" map="" carmen="" relations="" build_only=0 suite=0 quick=0
 while (($#)); do
   case $1 in
     --scenario) scenario=${2:?--scenario needs a file}; shift 2 ;;
@@ -27,19 +34,39 @@ while (($#)); do
     --carmen) carmen=${2:?--carmen needs a log}; shift 2 ;;
     --relations) relations=${2:?--relations needs a file}; shift 2 ;;
     --build-only) build_only=1; shift ;;
-    -h | --help) sed -n '2,18p' "$0"; exit 0 ;;
+    --suite) suite=1; shift ;;
+    --quick) quick=1; shift ;;
+    -h | --help) sed -n '2,24p' "$0"; exit 0 ;;
     *) echo "run_eval.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 [[ -n $map && -z $scenario ]] && { echo "run_eval.sh: --map goes with --scenario" >&2; exit 2; }
 [[ -n $carmen && -z $relations ]] && { echo "run_eval.sh: --carmen needs --relations" >&2; exit 2; }
+((quick && !suite)) && { echo "run_eval.sh: --quick goes with --suite" >&2; exit 2; }
 
-scripts/install_deps.sh
-build=${FLEETMAP_EVAL_BUILD_DIR:-build-release}
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
-  -DFLEETMAP_BUILD_JAR=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fleetmap-eval fleetmap-carmen-eval >&2
-((build_only)) && { echo "run_eval: built ($build/bin)" >&2; exit 0; }
+if [[ -n ${FLEETMAP_EVAL_BIN_DIR:-} ]]; then
+  bin=$FLEETMAP_EVAL_BIN_DIR
+else
+  scripts/install_deps.sh
+  build=${FLEETMAP_EVAL_BUILD_DIR:-build-release}
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
+    -DFLEETMAP_BUILD_JAR=OFF >/dev/null
+  cmake --build "$build" -j "$(nproc)" --target fleetmap-eval fleetmap-carmen-eval fleetmap-suite >&2
+  bin=$build/bin
+fi
+((build_only)) && { echo "run_eval: built ($bin)" >&2; exit 0; }
+
+if ((suite)); then
+  args=(--out "${FLEETMAP_SUITE_OUT:-out/suite}" --livinglab tools/sim/worlds/livinglab/fleet.yaml)
+  if ((quick)); then
+    args=(--out "${FLEETMAP_SUITE_OUT:-out/suite-quick}" --quick
+      --livinglab tools/sim/worlds/livinglab/fleet_short.yaml)
+    while read -r requirement _; do
+      [[ -n $requirement && $requirement != \#* ]] && args+=(--require "$requirement")
+    done <tools/suite/quick_thresholds.txt
+  fi
+  exec "$bin"/fleetmap-suite "${args[@]}" --data-dir "${FLEETMAP_DATA_DIR:-../shared/data}"
+fi
 
 worlds=tools/sim/worlds/livinglab
 data=${FLEETMAP_DATA_DIR:-../shared/data}/real  # the real logs (FLEETMAP_DATA_DIR)
@@ -63,7 +90,7 @@ evaluate() {  # scenario, figure-name suffix, fleetmap-eval arguments...
   local args=(--scenario "$s" --quiet --name "$name$suffix" --out "out/eval/$name$suffix" "$@")
   [[ -n $map ]] && args+=(--map "$map")
   echo "run_eval: $s ($*)" >&2
-  figures+=$("$build"/bin/fleetmap-eval "${args[@]}")$'\n'
+  figures+=$("$bin"/fleetmap-eval "${args[@]}")$'\n'
 }
 for s in "${scenarios[@]}"; do
   evaluate "$s" "" --pipeline agents
@@ -74,7 +101,7 @@ done
 for pair in "${logs[@]}"; do
   log=${pair%%:*} rel=${pair#*:}
   echo "run_eval: $log" >&2
-  figures+=$("$build"/bin/fleetmap-carmen-eval --carmen "$log" --relations "$rel" --audit 1 --png "out/eval/$(basename "$log" .rebuilt.clf).png" 2>/dev/null)$'\n'
+  figures+=$("$bin"/fleetmap-carmen-eval --carmen "$log" --relations "$rel" --audit 1 --png "out/eval/$(basename "$log" .rebuilt.clf).png" 2>/dev/null)$'\n'
 done
 printf '%s' "$figures"
 {

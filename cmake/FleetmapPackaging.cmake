@@ -6,7 +6,8 @@
 #   fleetmap-aggregator      fleetmap-aggregator, fleetmap-mapctl, fleetmap-keygen (the fleet key,
 #                            copied to every vehicle), fleetmap-record (the LCM log recorder),
 #                            fleetmap-aggregator.service, /etc/fleetmap/aggregator.{yaml,env}
-#   fleetmap-tools           simulator, world generator, evaluation, scanner emulator, CAN log
+#   fleetmap-tools           simulator, world generator, evaluation, world suite, scanner
+#                            emulator, CAN log
 #                            writer, maptool, CARMEN evaluation, sample publisher, the LAN
 #                            experiment; the worlds
 #   fleetmap-lcmtypes-java   the lcm-spy type jar and fleetmap-spy
@@ -17,7 +18,7 @@ set(fleetmap_pkg_dir "${PROJECT_SOURCE_DIR}/packaging")
 set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
 set(fleetmap_packaged_targets fleetmap-agent fleetmap-aggregator fleetmap-mapctl fleetmap-keygen fleetmap-record fleetmap-sim
     fleetmap-eval fleetmap-maptool fleetmap-sick-emulator fleetmap-sim-candump
-    fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool fleetmap-worldgen)
+    fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool fleetmap-worldgen fleetmap-suite)
 add_custom_target(fleetmap_packaged)
 add_dependencies(fleetmap_packaged ${fleetmap_packaged_targets})
 if(TARGET fleetmap_lcmtypes_jar)
@@ -54,7 +55,7 @@ install(FILES "${fleetmap_pkg_dir}/etc/aggregator.yaml" "${fleetmap_pkg_dir}/etc
 # source tree (/usr/share/fleetmap/tools/...), and the programs through --bin /usr/bin.
 install(TARGETS fleetmap-sim fleetmap-eval fleetmap-maptool fleetmap-sick-emulator
                 fleetmap-sim-candump fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool
-                fleetmap-worldgen
+                fleetmap-worldgen fleetmap-suite
         RUNTIME DESTINATION bin COMPONENT tools)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/tools/sim/worlds" DESTINATION share/fleetmap/tools/sim
         COMPONENT tools)

@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libopencv-dev libyaml-cpp-dev libzstd-dev zlib1g-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   iproute2  # ip route for LCM multicast on loopback
-  nlohmann-json3-dev  # SICK recordings (.pcapng.json) in the emulator and tests
+  nlohmann-json3-dev  # SICK recordings (.pcapng.json), the world suite's reports
   libcli11-dev  # command lines of the programs (tools/worldgen: fleetmap-worldgen)
   qemu-system-x86 linux-image-amd64 busybox-static can-utils cpio  # SocketCAN tests in a VM
   clang-format  # scripts/check_format.sh (ctest format_test)

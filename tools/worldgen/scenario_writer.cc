@@ -98,6 +98,9 @@ Placement OnARoute(const std::vector<Route>& routes, Rng& rng, double min_leg_m 
   return {routes[0][0], (routes[0][1] - routes[0][0]).normalized(), 0};
 }
 
+// What of the scenario found no room.
+enum class Part { kNone, kObject, kPerson, kForklift };
+
 class Writer {
  public:
   Writer(const core::OccupancyGrid& map, const ScenarioOptions& o)
@@ -132,21 +135,28 @@ class Writer {
     for (int i = 0; i < o_.objects_added + o_.objects_removed; ++i) {
       const bool removed = i >= o_.objects_added;
       auto object = PlaceObject(*floor, s.objects, removed);
-      if (!object.ok()) return object.status();
+      if (!object.ok()) return Failed(Part::kObject, object.status());
       object->id = object->kind + (removed ? "_taken_" : "_") + std::to_string(i + 1);
       s.objects.push_back(*object);
     }
     for (int i = 0; i < o_.people + o_.forklifts; ++i) {
       const bool forklift = i >= o_.people;
       auto actor = forklift ? PlaceForklift(s.objects) : PlacePerson(s.objects, i % 2 == 1);
-      if (!actor.ok()) return actor.status();
+      if (!actor.ok()) return Failed(forklift ? Part::kForklift : Part::kPerson, actor.status());
       actor->id = actor->kind + "_" + std::to_string(i + 1);
       s.actors.push_back(*actor);
     }
     return s;
   }
 
+  Part failed() const { return failed_; }
+
  private:
+  core::Status Failed(Part part, const core::Status& why) {
+    failed_ = part;
+    return why;
+  }
+
   bool ClearOfRoutes(const std::vector<Eigen::Vector2d>& polygon, double gap_m) const {
     for (const Route& r : routes_)
       for (const auto& [a, b] : Legs(r))
@@ -282,6 +292,7 @@ class Writer {
   std::vector<Route> routes_;
   std::vector<double> periods_;
   std::map<double, core::Result<FreeSpace>> spaces_;  // by clearance: each made once
+  Part failed_ = Part::kNone;
 };
 
 }  // namespace
@@ -302,9 +313,10 @@ namespace {
 
 core::Result<sim::Scenario> WriteChecked(const core::OccupancyGrid& map,
                                          const std::string& map_yaml,
-                                         const ScenarioOptions& options) {
+                                         const ScenarioOptions& options, Part& failed) {
   Writer writer(map, options);
   auto scenario = writer.Write(map_yaml);
+  failed = writer.failed();
   if (!scenario.ok()) return scenario;
   // The simulator's own checks (routes clear of walls, objects inside the map, people clear of
   // objects) hold for what was written.
@@ -313,8 +325,18 @@ core::Result<sim::Scenario> WriteChecked(const core::OccupancyGrid& map,
   return scenario;
 }
 
-// The next smaller fleet to try on a floor where `o` did not fit; false when none is left.
-bool Smaller(const ScenarioOptions& asked, ScenarioOptions& o) {
+// The next smaller scenario to try where `failed` found no room in `o`; false when nothing
+// smaller would help.
+bool Smaller(const ScenarioOptions& asked, Part failed, ScenarioOptions& o) {
+  if (failed == Part::kForklift) {
+    o.forklifts = 0;  // a cart was tried too
+    return true;
+  }
+  if (failed == Part::kPerson && o.people > 1) {
+    --o.people;
+    return true;
+  }
+  if (failed != Part::kObject) return false;
   if (o.vehicles > 1) {
     --o.vehicles;
     return true;
@@ -325,10 +347,6 @@ bool Smaller(const ScenarioOptions& asked, ScenarioOptions& o) {
   }
   if (LoopBudget(o) > LoopBudget(asked) / 3) {
     o.max_loop_m = LoopBudget(o) / 2;
-    return true;
-  }
-  if (o.forklifts > 0) {
-    o.forklifts = 0;
     return true;
   }
   return false;
@@ -345,6 +363,9 @@ std::string Fitted(const ScenarioOptions& asked, const ScenarioOptions& used) {
   if (LoopBudget(used) != LoopBudget(asked))
     fitted += (fitted.empty() ? "" : ", ") + std::string("loops up to ") +
               std::to_string(static_cast<int>(LoopBudget(used))) + " m";
+  if (used.people != asked.people)
+    fitted += (fitted.empty() ? "" : ", ") + std::to_string(used.people) + " people instead of " +
+              std::to_string(asked.people);
   if (used.forklifts != asked.forklifts)
     fitted += (fitted.empty() ? "" : ", ") + std::string("no forklift");
   return fitted;
@@ -357,12 +378,12 @@ core::Result<WrittenScenario> WriteScenarioFor(const core::OccupancyGrid& map,
                                                const ScenarioOptions& options) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
   ScenarioOptions tried = options;
-  auto scenario = WriteChecked(map, map_yaml, tried);
+  Part failed = Part::kNone;
+  auto scenario = WriteChecked(map, map_yaml, tried, failed);
   // The first refusal is the one reported: it names what the asked-for fleet lacks.
   const core::Status first = scenario.status();
-  while (!scenario.ok() && scenario.status().code() == core::StatusCode::kFailedPrecondition &&
-         options.fit_to_floor && Smaller(options, tried))
-    scenario = WriteChecked(map, map_yaml, tried);
+  while (!scenario.ok() && options.fit_to_floor && Smaller(options, failed, tried))
+    scenario = WriteChecked(map, map_yaml, tried, failed);
   if (!scenario.ok()) return first;
   return WrittenScenario{std::move(*scenario), Fitted(options, tried)};
 }

@@ -28,9 +28,10 @@ struct ScenarioOptions {
   double object_gap_m = 0.3;  // beyond the vehicle's clearance, between an object and a route
   int people = 2;             // crossing routes back and forth; every other one stands a while
   int forklifts = 1;          // along a route, stopping at each end
-  // On a floor too small for all of the above (a shop, a corridor): fewer vehicles, down to
-  // one, then fewer objects appearing, down to one, then loops of a half and a quarter of the
-  // length, then no forklift, rather than no scenario at all.
+  // On a floor too small for all of the above (a shop, a corridor), rather than no scenario
+  // at all: where no object fits, fewer vehicles (down to one), then fewer objects appearing
+  // (down to one), then loops of a half and a quarter of the length; where no forklift nor
+  // cart fits, none; where a person does not fit, fewer people (down to one).
   bool fit_to_floor = true;
   core::Status Validate() const;
 };

@@ -1,0 +1,64 @@
+#include "tools/suite/world_score.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace fleetmap::suite {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string Write(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name + std::to_string(getpid()) + ".json";
+  std::ofstream(path) << text;
+  return path;
+}
+
+constexpr const char* kReport = R"({
+  "scenario": "g_office_1", "changed_cells.f1": 0.8, "changed_cells.added.recall": 0.9,
+  "changed_cells.removed.recall": null, "static_cells_erased": 0, "actor_cells_mapped": 12,
+  "alignment.translation_cells.p95": 1.25, "merges.accepted": 15, "merges.rejected": 5,
+  "changed_cells.added.true": 300, "changed_cells.removed.true": 0
+})";
+
+TEST(WorldScoreTest, ReadsTheFiguresOfAReport) {
+  auto s = ReadWorldScore(Write("report_ok", kReport));
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  EXPECT_DOUBLE_EQ(s->changed_f1, 0.8);
+  EXPECT_TRUE(std::isnan(s->removed_recall));
+  EXPECT_EQ(s->actor_mapped, 12);
+  EXPECT_DOUBLE_EQ(s->align_trans_p95_cells, 1.25);
+  EXPECT_DOUBLE_EQ(s->RejectedShare(), 0.25);
+}
+
+TEST(WorldScoreTest, AReportWithoutAKeyOrNotJsonIsDataLoss) {
+  std::string report = kReport;
+  report.replace(report.find("\"actor_cells_mapped\""), 20, "\"actors\"");
+  auto missing = ReadWorldScore(Write("report_missing", report));
+  ASSERT_FALSE(missing.ok());
+  EXPECT_THAT(missing.status().message(), HasSubstr("actor_cells_mapped"));
+  EXPECT_EQ(ReadWorldScore(Write("report_torn", "{\"changed_cells.f1\": 0.")).status().code(),
+            core::StatusCode::kDataLoss);
+  EXPECT_FALSE(ReadWorldScore(::testing::TempDir() + "no_such_report.json").ok());
+}
+
+TEST(WorldScoreTest, AWorldWhereNothingChangedHasNoScore) {
+  std::string report = kReport;
+  report.replace(report.find("\"changed_cells.added.true\": 300"), 31,
+                 "\"changed_cells.added.true\": 0");
+  auto s = ReadWorldScore(Write("report_nothing", report));
+  ASSERT_FALSE(s.ok());
+  EXPECT_THAT(s.status().message(), HasSubstr("no cell of the world changed"));
+}
+
+TEST(WorldScoreTest, NoMergeMeansNoRejectedShare) {
+  WorldScore s;
+  EXPECT_TRUE(std::isnan(s.RejectedShare()));
+}
+
+}  // namespace
+}  // namespace fleetmap::suite

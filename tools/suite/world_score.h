@@ -1,0 +1,30 @@
+// One world's scores for one pipeline, read from the report.json that fleetmap-eval wrote
+// (keys in docs/evaluation.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/result.h"
+
+namespace fleetmap::suite {
+
+struct WorldScore {
+  double changed_f1 = 0.0;
+  double added_recall = 0.0;    // NaN when nothing was added in the world
+  double removed_recall = 0.0;  // NaN when nothing was taken away
+  int64_t static_erased = 0;    // cells
+  int64_t actor_mapped = 0;     // cells
+  double align_trans_p95_cells = 0.0;  // NaN without an accepted merge
+  int merges_accepted = 0;
+  int merges_rejected = 0;
+  double run_s = 0.0;  // wall-clock seconds of the run
+
+  // Rejected of all merges; NaN without any merge.
+  double RejectedShare() const;
+};
+
+// DataLoss names the key that is missing or not a number; null reads as NaN.
+core::Result<WorldScore> ReadWorldScore(const std::string& report_json_path);
+
+}  // namespace fleetmap::suite
