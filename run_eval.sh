@@ -36,7 +36,7 @@ while (($#)); do
     --build-only) build_only=1; shift ;;
     --suite) suite=1; shift ;;
     --quick) quick=1; shift ;;
-    -h | --help) sed -n '2,24p' "$0"; exit 0 ;;
+    -h | --help) sed -n '2,25p' "$0"; exit 0 ;;
     *) echo "run_eval.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done

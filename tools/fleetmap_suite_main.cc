@@ -131,7 +131,8 @@ void Evaluate(const Options& o, std::vector<WorldOutcome>& outcomes) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double left = elapsed / finished * (jobs.size() - finished);
     const auto& s = agents ? w.agents : w.truthmaps;
-    std::fprintf(stderr, "suite: [%zu/%zu] %-32s %-9s %s (%.0f s)   %.0f min done, ~%.0f min left\n",
+    std::fprintf(stderr,
+                 "suite: [%zu/%zu] %-32s %-9s %s (%.0f s)   %.0f min done, ~%.0f min left\n",
                  finished, jobs.size(), w.world.name.c_str(), runs[j].pipeline.c_str(),
                  s ? ("F1 " + std::to_string(s->changed_f1).substr(0, 5)).c_str()
                    : ("FAILED: " + error).c_str(),
@@ -166,8 +167,7 @@ bool Holds(const std::string& requirement, const std::vector<Figure>& figures, s
 core::Status WriteOutputs(const Options& o, const std::vector<WorldOutcome>& outcomes,
                           const std::vector<Figure>& figures) {
   nlohmann::json json;
-  for (const Figure& f : figures)
-    json["figures"][f.name] = {{"value", f.value}, {"unit", f.unit}};
+  for (const Figure& f : figures) json["figures"][f.name] = {{"value", f.value}, {"unit", f.unit}};
   for (const WorldOutcome& w : outcomes) {
     nlohmann::json& j = json["worlds"][w.world.name];
     j["group"] = w.world.group;
@@ -202,7 +202,8 @@ int Run(int argc, char** argv) {
   o.bin_dir = ThisProgramsFolder();
   o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("--out", o.out, "output folder")->capture_default_str();
-  app.add_option("--data-dir", o.data_dir, "data folder; public maps in its worlds/ (default: "
+  app.add_option("--data-dir", o.data_dir,
+                 "data folder; public maps in its worlds/ (default: "
                  "FLEETMAP_DATA_DIR, else ../shared/data)");
   app.add_option("--livinglab", o.livinglab,
                  "the LivingLab scenario, reported as suite.livinglab.changed_f1 (e.g. "
@@ -238,7 +239,8 @@ int Run(int argc, char** argv) {
   }
   if (o.duration_s == 0) o.duration_s = o.quick ? 150.0 : 180.0;
 
-  const SuitePlan plan = PlanSuite({o.quick, (fs::path(o.data_dir) / "worlds").string(), o.livinglab});
+  const SuitePlan plan =
+      PlanSuite({o.quick, (fs::path(o.data_dir) / "worlds").string(), o.livinglab});
   for (const std::string& note : plan.notes) std::fprintf(stderr, "suite: %s\n", note.c_str());
   std::vector<WorldOutcome> outcomes = Prepare(o, plan);
   Evaluate(o, outcomes);

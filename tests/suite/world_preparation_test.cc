@@ -31,7 +31,8 @@ TEST(WorldPreparationTest, UnusableMapsAreRefusedWithTheReason) {
   EXPECT_THAT(CheckMapUsable(walls_only).message(), HasSubstr("free floor"));
   core::OccupancyGrid floor_only(core::GridGeometry(0.05, 100, 100));
   for (int y = 0; y < 100; ++y)
-    for (int x = 0; x < 100; ++x) floor_only.SetState(core::CellIndex{x, y}, core::CellState::kFree);
+    for (int x = 0; x < 100; ++x)
+      floor_only.SetState(core::CellIndex{x, y}, core::CellState::kFree);
   EXPECT_THAT(CheckMapUsable(floor_only).message(), HasSubstr("no occupied cell"));
 }
 

@@ -20,7 +20,8 @@ pid_t Start(const Job& job, std::string& error) {
   const int out = ::open(job.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   const int err = ::open(job.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (out < 0 || err < 0 || job.argv.empty()) {
-    error = job.argv.empty() ? "no program" : "cannot open the output files: " + std::string(std::strerror(errno));
+    error = job.argv.empty() ? "no program"
+                             : "cannot open the output files: " + std::string(std::strerror(errno));
     if (out >= 0) ::close(out);
     if (err >= 0) ::close(err);
     return -1;

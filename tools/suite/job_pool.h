@@ -14,7 +14,7 @@ struct Job {
 };
 
 struct JobResult {
-  int exit_code = -1;   // the program's status; 128 + N when killed by signal N; -1: not started
+  int exit_code = -1;    // the program's status; 128 + N when killed by signal N; -1: not started
   double seconds = 0.0;  // wall clock
   std::string error;     // why it could not be started
 };

@@ -26,19 +26,33 @@ struct Aggregate {
 
 const std::vector<Aggregate>& Aggregates() {
   static const std::vector<Aggregate> kAggregates = {
-      {"changed_f1", [](const WorldScore& s) { return s.changed_f1; }, {"median", "min", "p10"},
+      {"changed_f1",
+       [](const WorldScore& s) { return s.changed_f1; },
+       {"median", "min", "p10"},
        "ratio"},
-      {"added_recall", [](const WorldScore& s) { return s.added_recall; }, {"median", "min"},
+      {"added_recall",
+       [](const WorldScore& s) { return s.added_recall; },
+       {"median", "min"},
        "ratio"},
-      {"removed_recall", [](const WorldScore& s) { return s.removed_recall; }, {"median", "min"},
+      {"removed_recall",
+       [](const WorldScore& s) { return s.removed_recall; },
+       {"median", "min"},
        "ratio"},
-      {"static_erased", [](const WorldScore& s) { return double(s.static_erased); }, {"max"},
+      {"static_erased",
+       [](const WorldScore& s) { return double(s.static_erased); },
+       {"max"},
        "cells"},
-      {"actor_mapped", [](const WorldScore& s) { return double(s.actor_mapped); },
-       {"median", "max"}, "cells"},
-      {"align_trans_p95_cells", [](const WorldScore& s) { return s.align_trans_p95_cells; },
-       {"median", "max"}, "cells"},
-      {"rejected_share", [](const WorldScore& s) { return s.RejectedShare(); }, {"median", "max"},
+      {"actor_mapped",
+       [](const WorldScore& s) { return double(s.actor_mapped); },
+       {"median", "max"},
+       "cells"},
+      {"align_trans_p95_cells",
+       [](const WorldScore& s) { return s.align_trans_p95_cells; },
+       {"median", "max"},
+       "cells"},
+      {"rejected_share",
+       [](const WorldScore& s) { return s.RejectedShare(); },
+       {"median", "max"},
        "ratio"},
   };
   return kAggregates;
@@ -81,8 +95,8 @@ core::Status AddAggregates(const std::vector<WorldOutcome>& outcomes, const std:
       }
     if (values.empty()) continue;  // e.g. no world with an accepted merge: said by its absence
     for (const char* statistic : a.statistics)
-      out.push_back({prefix + "." + a.figure + "." + statistic, Statistic(values, statistic),
-                     a.unit});
+      out.push_back(
+          {prefix + "." + a.figure + "." + statistic, Statistic(values, statistic), a.unit});
   }
   return core::OkStatus();
 }
@@ -90,9 +104,9 @@ core::Status AddAggregates(const std::vector<WorldOutcome>& outcomes, const std:
 }  // namespace
 
 double Quantile(std::vector<double> values, double q) {
-  values.erase(std::remove_if(values.begin(), values.end(),
-                              [](double v) { return !std::isfinite(v); }),
-               values.end());
+  values.erase(
+      std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+      values.end());
   if (values.empty()) return kNaN;
   std::sort(values.begin(), values.end());
   const double at = std::clamp(q, 0.0, 1.0) * double(values.size() - 1);

@@ -16,12 +16,12 @@ struct Variant {
   double resolution_m, rotation_deg, length_m, width_m;
 };
 constexpr Variant kVariants[] = {
-    {0.05, 0.0, 0, 0},    {0.02, 15.0, 26, 18}, {0.03, 30.0, 40, 26}, {0.10, 45.0, 0, 0},
-    {0.075, 7.0, 0, 0},   {0.04, 62.0, 0, 0},   {0.05, 23.0, 0, 0},   {0.025, -12.0, 34, 22},
+    {0.05, 0.0, 0, 0},  {0.02, 15.0, 26, 18}, {0.03, 30.0, 40, 26}, {0.10, 45.0, 0, 0},
+    {0.075, 7.0, 0, 0}, {0.04, 62.0, 0, 0},   {0.05, 23.0, 0, 0},   {0.025, -12.0, 34, 22},
 };
 // The quick suite: one building per style, small, each at another resolution and turn.
 constexpr Variant kQuickVariants[] = {
-    {0.05, 0.0, 30, 20}, {0.03, 30.0, 26, 18}, {0.10, 45.0, 34, 20},
+    {0.05, 0.0, 30, 20},  {0.03, 30.0, 26, 18}, {0.10, 45.0, 34, 20},
     {0.075, 7.0, 30, 18}, {0.04, 62.0, 30, 22},
 };
 // The public maps of the quick suite: a warehouse at 0.05 m and an office at 0.068 m.

@@ -35,20 +35,20 @@ std::string Where(const WorldOutcome& o) {
   const double turn_deg = o.world.source == WorldSource::kGenerated
                               ? o.world.generated.render.rotation_rad * 180.0 / M_PI
                               : NAN;
-  std::snprintf(text, sizeof(text), "%.3f m, %.0f x %.0f m%s", o.prepared.resolution_m,
-                o.prepared.width_m, o.prepared.height_m,
-                std::isfinite(turn_deg) ? (", turned " + Cell(turn_deg, "%.0f") + " deg").c_str()
-                                        : "");
+  std::snprintf(
+      text, sizeof(text), "%.3f m, %.0f x %.0f m%s", o.prepared.resolution_m, o.prepared.width_m,
+      o.prepared.height_m,
+      std::isfinite(turn_deg) ? (", turned " + Cell(turn_deg, "%.0f") + " deg").c_str() : "");
   return text;
 }
 
 std::string ScoreColumns(const std::optional<WorldScore>& s, const std::string& error) {
-  if (!s) return "| " + (error.empty() ? std::string("not run") : "failed: " + error) +
-                 " | | | | | | |";
+  if (!s)
+    return "| " + (error.empty() ? std::string("not run") : "failed: " + error) + " | | | | | | |";
   return "| " + Cell(s->changed_f1) + " | " + Cell(s->added_recall) + " | " +
          Cell(s->removed_recall) + " | " + std::to_string(s->static_erased) + " | " +
-         std::to_string(s->actor_mapped) + " | " + Cell(s->align_trans_p95_cells, "%.2f") +
-         " | " + std::to_string(s->merges_rejected) + "/" +
+         std::to_string(s->actor_mapped) + " | " + Cell(s->align_trans_p95_cells, "%.2f") + " | " +
+         std::to_string(s->merges_rejected) + "/" +
          std::to_string(s->merges_accepted + s->merges_rejected) + " (" + Cell(s->run_s, "%.0f") +
          " s) |";
 }
@@ -68,7 +68,8 @@ std::vector<const WorldOutcome*> InReportOrder(const std::vector<WorldOutcome>& 
 
 std::string SuiteMarkdown(const std::vector<WorldOutcome>& outcomes,
                           const std::vector<Figure>& figures) {
-  std::string md = "# World suite\n\n## Aggregate\n\n| figure | value | unit |\n| --- | --- | --- |\n";
+  std::string md =
+      "# World suite\n\n## Aggregate\n\n| figure | value | unit |\n| --- | --- | --- |\n";
   for (const Figure& f : figures)
     if (f.name.rfind("suite.world.", 0) != 0)
       md += "| " + f.name + " | " + Cell(f.value, "%.4g") + " | " + f.unit + " |\n";
@@ -90,8 +91,9 @@ std::string SuiteMarkdown(const std::vector<WorldOutcome>& outcomes,
       md += "\n";
     }
   }
-  md += "\nThe LivingLab hall is beside the suite, in no aggregate. Unusable worlds are in no "
-        "aggregate either.\n";
+  md +=
+      "\nThe LivingLab hall is beside the suite, in no aggregate. Unusable worlds are in no "
+      "aggregate either.\n";
   return md;
 }
 
@@ -122,7 +124,8 @@ core::Status WriteSuitePng(const std::vector<WorldOutcome>& outcomes, const std:
       text("unusable: " + o.unusable.substr(0, 70), kLabel, y + 13, {0, 0, 200});
     } else {
       if (o.agents)
-        cv::rectangle(img, {kLabel, y + 3}, {x_of(std::clamp(o.agents->changed_f1, 0.0, 1.0)), y + kRow - 3},
+        cv::rectangle(img, {kLabel, y + 3},
+                      {x_of(std::clamp(o.agents->changed_f1, 0.0, 1.0)), y + kRow - 3},
                       {200, 140, 40}, cv::FILLED);
       if (o.truthmaps) {
         const int x = x_of(std::clamp(o.truthmaps->changed_f1, 0.0, 1.0));
@@ -145,7 +148,8 @@ core::Status WriteSuitePng(const std::vector<WorldOutcome>& outcomes, const std:
   } catch (const cv::Exception& e) {
     return core::IoError(path + ": " + e.what());
   }
-  return core::WriteFileAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  return core::WriteFileAtomically(
+      path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 }  // namespace fleetmap::suite

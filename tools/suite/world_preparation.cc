@@ -45,7 +45,8 @@ core::Result<core::OccupancyGrid> MapOf(const SuiteWorld& world, const std::stri
 core::Status CheckMapUsable(const core::OccupancyGrid& map) {
   const core::GridGeometry& g = map.geometry();
   if (g.num_cells() == 0) return core::FailedPrecondition("the map has no cells");
-  if (!(g.resolution_m() > 0)) return core::FailedPrecondition("the map's resolution is not positive");
+  if (!(g.resolution_m() > 0))
+    return core::FailedPrecondition("the map's resolution is not positive");
   const int64_t free = map.CountState(core::CellState::kFree);
   const int64_t occupied = map.CountState(core::CellState::kOccupied);
   if (free == 0 && occupied == 0)

@@ -15,7 +15,7 @@ struct PreparedWorld {
   std::string scenario_yaml;
   double resolution_m = 0.0;
   double width_m = 0.0, height_m = 0.0;  // the map's grid
-  std::string fitted;  // what the scenario writer left out on a small floor
+  std::string fitted;                    // what the scenario writer left out on a small floor
 };
 
 // Checks a map before any scenario is planned on it: FailedPrecondition names what it lacks

@@ -11,10 +11,10 @@ namespace fleetmap::suite {
 
 struct WorldScore {
   double changed_f1 = 0.0;
-  double added_recall = 0.0;    // NaN when nothing was added in the world
-  double removed_recall = 0.0;  // NaN when nothing was taken away
-  int64_t static_erased = 0;    // cells
-  int64_t actor_mapped = 0;     // cells
+  double added_recall = 0.0;           // NaN when nothing was added in the world
+  double removed_recall = 0.0;         // NaN when nothing was taken away
+  int64_t static_erased = 0;           // cells
+  int64_t actor_mapped = 0;            // cells
   double align_trans_p95_cells = 0.0;  // NaN without an accepted merge
   int merges_accepted = 0;
   int merges_rejected = 0;
