@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/file_io.h"
+#include "core/codecs/map_render.h"
 
 namespace fleetmap::suite {
 namespace {
@@ -104,7 +103,11 @@ core::Status WriteSuitePng(const std::vector<WorldOutcome>& outcomes, const std:
   for (size_t i = 0; i < order.size(); ++i)
     groups += i == 0 || order[i]->world.group != order[i - 1]->world.group;
   const int height = kTop + kRow * (static_cast<int>(order.size()) + groups) + 40;
-  cv::Mat img(height, kLabel + kBar + 2 * kMargin, CV_8UC3, cv::Scalar(255, 255, 255));
+  core::BgrImage picture;  // drawn through a cv::Mat over its pixels, written by core::WritePng
+  picture.width = kLabel + kBar + 2 * kMargin;
+  picture.height = height;
+  picture.pixels.assign(static_cast<size_t>(picture.width) * height * 3, 255);
+  cv::Mat img(picture.height, picture.width, CV_8UC3, picture.pixels.data());
   const auto x_of = [&](double f1) { return kLabel + static_cast<int>(std::lround(f1 * kBar)); };
   const auto text = [&](const std::string& s, int x, int y, const cv::Scalar& colour) {
     cv::putText(img, s, {x, y}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
@@ -142,14 +145,7 @@ core::Status WriteSuitePng(const std::vector<WorldOutcome>& outcomes, const std:
     cv::line(img, {x, y}, {x, y + 5}, {0, 0, 0}, 1);
     text(Cell(tick / 10.0, "%.1f"), x - 8, y + 20, {0, 0, 0});
   }
-  std::vector<uchar> png;
-  try {
-    if (!cv::imencode(".png", img, png)) return core::IoError(path + ": PNG encoding failed");
-  } catch (const cv::Exception& e) {
-    return core::IoError(path + ": " + e.what());
-  }
-  return core::WriteFileAtomically(
-      path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  return core::WritePng(picture, path);
 }
 
 }  // namespace fleetmap::suite

@@ -354,20 +354,17 @@ bool Smaller(const ScenarioOptions& asked, Part failed, ScenarioOptions& o) {
 
 std::string Fitted(const ScenarioOptions& asked, const ScenarioOptions& used) {
   std::string fitted;
+  const auto add = [&](const std::string& what) { fitted += (fitted.empty() ? "" : ", ") + what; };
   if (used.vehicles != asked.vehicles)
-    fitted =
-        std::to_string(used.vehicles) + " vehicle(s) instead of " + std::to_string(asked.vehicles);
+    add(std::to_string(used.vehicles) + " vehicle(s) instead of " + std::to_string(asked.vehicles));
   if (used.objects_added != asked.objects_added)
-    fitted += (fitted.empty() ? "" : ", ") + std::to_string(used.objects_added) +
-              " object(s) appearing instead of " + std::to_string(asked.objects_added);
+    add(std::to_string(used.objects_added) + " object(s) appearing instead of " +
+        std::to_string(asked.objects_added));
   if (LoopBudget(used) != LoopBudget(asked))
-    fitted += (fitted.empty() ? "" : ", ") + std::string("loops up to ") +
-              std::to_string(static_cast<int>(LoopBudget(used))) + " m";
+    add("loops up to " + std::to_string(static_cast<int>(LoopBudget(used))) + " m");
   if (used.people != asked.people)
-    fitted += (fitted.empty() ? "" : ", ") + std::to_string(used.people) + " people instead of " +
-              std::to_string(asked.people);
-  if (used.forklifts != asked.forklifts)
-    fitted += (fitted.empty() ? "" : ", ") + std::string("no forklift");
+    add(std::to_string(used.people) + " people instead of " + std::to_string(asked.people));
+  if (used.forklifts != asked.forklifts) add("no forklift");
   return fitted;
 }
 
