@@ -38,6 +38,7 @@ core::Status AggregatorOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(temp_lines.Validate());
   FLEETMAP_RETURN_IF_ERROR(static_features.Validate());
   FLEETMAP_RETURN_IF_ERROR(alignment.Validate());
+  FLEETMAP_RETURN_IF_ERROR(cell_alignment.Validate());
   FLEETMAP_RETURN_IF_ERROR(confidence.Validate());
   FLEETMAP_RETURN_IF_ERROR(merge.Validate());
   FLEETMAP_RETURN_IF_ERROR(store.Validate());
@@ -78,13 +79,49 @@ Assessment Aggregator::Assess(const core::TempMap& map) const {
   }
   AlignmentInput in{lines->lines, EdgePoints(lines->edges, map.grid.geometry()), map.anchor_in_map};
   a.temp_lines = static_cast<int>(in.temp_lines.size());
-  a.alignment = Align(in, features_, options_.alignment);
   const auto points = Subsample(in.temp_points, options_.alignment.max_search_points);
   const double before = ExplainedFraction(features_, PlacePoints(points, in.anchor));
-  const double after =
-      ExplainedFraction(features_, PlacePoints(points, a.alignment.correction * in.anchor));
-  a.confidence = AssessAlignment(a.alignment, features_.geometry().resolution_m(), before, after,
-                                 options_.confidence);
+  const auto by_lines = [&] {
+    Assessment l;
+    l.alignment = Align(in, features_, options_.alignment);
+    const double after =
+        ExplainedFraction(features_, PlacePoints(points, l.alignment.correction * in.anchor));
+    l.confidence = AssessAlignment(l.alignment, features_.geometry().resolution_m(), before, after,
+                                   options_.confidence);
+    return l;
+  };
+  const auto by_cells = [&] {
+    Assessment c;
+    const CellAlignment cells =
+        AlignCells(features_, in.temp_points, in.anchor, options_.cell_alignment);
+    const double after =
+        ExplainedFraction(features_, PlacePoints(points, cells.correction * in.anchor));
+    c.confidence = AssessCellAlignment(cells, before, after, options_.confidence);
+    c.alignment = WithCorrection(in, features_, options_.alignment, cells.correction);
+    return c;
+  };
+  // The first way tried, and the other where the first is rejected.
+  const CellAlignmentUse use = options_.cell_alignment.use;
+  const bool cells_first = use == CellAlignmentUse::kFirst;
+  Assessment first = cells_first ? by_cells() : by_lines();
+  const char* first_name = cells_first ? "cells" : "lines";
+  const char* second_name = cells_first ? "lines" : "cells";
+  if (first.confidence.accepted() || use == CellAlignmentUse::kOff) {
+    a.alignment = std::move(first.alignment);
+    a.confidence = std::move(first.confidence);
+    if (cells_first) a.confidence.explanation = "aligned by cells";
+  } else {
+    Assessment second = cells_first ? by_lines() : by_cells();
+    const std::string why_not_first = first.confidence.explanation;
+    a.alignment = std::move(second.alignment);
+    a.confidence = std::move(second.confidence);
+    a.confidence.explanation = a.confidence.accepted()
+                                   ? std::string("aligned by ") + second_name + " (by " +
+                                         first_name + ": " + why_not_first + ")"
+                                   : first_name + (": " + why_not_first) + "; " + second_name +
+                                         ": " + a.confidence.explanation;
+    if (!a.confidence.accepted() && !cells_first) a.confidence.reason = first.confidence.reason;
+  }
   a.reason = a.confidence.reason;
   a.reason_text = a.confidence.explanation;
   return a;
@@ -123,6 +160,7 @@ core::Result<MergeReport> Aggregator::Commit(const core::TempMap& map, const Ass
   r.vehicle_id = map.vehicle_id;
   r.tempmap_sequence = map.sequence;
   r.accepted = true;
+  r.reason_text = assessment.reason_text;  // how it was aligned, where not by lines alone
   r.correction = correction;
   r.alignment = assessment.alignment;
   r.confidence = assessment.confidence;

@@ -28,6 +28,10 @@ struct AggregatorOptions {
   LineFeatureOptions temp_lines;         // line extraction of temporary maps
   StaticFeatureOptions static_features;  // line extraction and overlap fields of the static map
   AlignmentOptions alignment;
+  // The temporary map's cells matched to the static map's around the anchor: first (the
+  // lines' correction where it is rejected), only where the lines' correction is rejected
+  // (too few lines, lines that disagree, a worse fit), or never (docs/aggregator.md).
+  CellAlignmentOptions cell_alignment;
   ConfidenceOptions confidence;
   MergeOptions merge;
   StoreOptions store;

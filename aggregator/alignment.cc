@@ -204,4 +204,16 @@ AlignmentResult Align(const AlignmentInput& input, const StaticMapFeatures& feat
                                                : AlignOurs(input, features, options);
 }
 
+AlignmentResult WithCorrection(const AlignmentInput& input, const StaticMapFeatures& features,
+                               const AlignmentOptions& options, const core::Pose2& correction) {
+  AlignmentResult r;
+  r.axis_x = features.directions().primary();
+  r.axis_y = Perpendicular(r.axis_x);
+  r.correction = correction;
+  LineMatchOptions refined = options.matching;
+  refined.max_normal_offset_m = options.refined_max_normal_offset_m;
+  Finish(input, features, refined, r);
+  return r;
+}
+
 }  // namespace fleetmap::aggregator

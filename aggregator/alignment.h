@@ -71,6 +71,11 @@ struct AlignmentResult {
 AlignmentResult Align(const AlignmentInput& input, const StaticMapFeatures& features,
                       const AlignmentOptions& options);
 
+// The result of a correction found otherwise (cell_alignment.h): the paper's numbers along the
+// building's dominant directions and the lines matched after it.
+AlignmentResult WithCorrection(const AlignmentInput& input, const StaticMapFeatures& features,
+                               const AlignmentOptions& options, const core::Pose2& correction);
+
 // Every `stride`-th point such that at most `max_points` remain (deterministic).
 std::vector<Eigen::Vector2d> Subsample(const std::vector<Eigen::Vector2d>& points, int max_points);
 

@@ -132,4 +132,32 @@ AlignmentConfidence AssessAlignment(const AlignmentResult& alignment, double res
   return c;
 }
 
+AlignmentConfidence AssessCellAlignment(const CellAlignment& cells, double explained_before,
+                                        double explained_after, const ConfidenceOptions& o) {
+  AlignmentConfidence c;
+  c.explained_before = explained_before;
+  c.explained_after = explained_after;
+  c.overlap_gain = explained_after - explained_before;
+  c.distinctness = cells.distinctness;
+  if (cells.at_edge) {
+    c.reason = RejectReason::kAmbiguousShift;
+    c.explanation = Format("best pose at the edge of the window (score %.3f, at the anchor %.3f)",
+                           cells.score, cells.at_anchor);
+  } else if (c.distinctness < o.min_distinctness) {
+    c.reason = RejectReason::kAmbiguousShift;
+    c.explanation = Format("another pose fits almost as well: distinctness %.3f < %.3f",
+                           c.distinctness, o.min_distinctness);
+  } else if (explained_after < explained_before - o.max_overlap_loss) {
+    c.reason = RejectReason::kOverlapWorse;
+    c.explanation =
+        Format("explained fraction fell from %.3f to %.3f", explained_before, explained_after);
+  } else if (explained_after < o.min_explained_fraction) {
+    c.reason = RejectReason::kLowOverlap;
+    c.explanation =
+        Format("explained fraction %.3f < %.3f", explained_after, o.min_explained_fraction);
+  }
+  c.score = c.accepted() ? explained_after * cells.distinctness : 0.0;
+  return c;
+}
+
 }  // namespace fleetmap::aggregator

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "aggregator/alignment.h"
+#include "aggregator/cell_alignment.h"
 
 namespace fleetmap::aggregator {
 
@@ -71,5 +72,11 @@ struct AlignmentConfidence {
 AlignmentConfidence AssessAlignment(const AlignmentResult& alignment, double resolution_m,
                                     double explained_before, double explained_after,
                                     const ConfidenceOptions& options);
+
+// A cell alignment, judged by the same limits: its peak must be distinct and inside its
+// window, and the static map must explain as much of the placed map as the anchor's
+// placement did (less max_overlap_loss) and at least min_explained_fraction.
+AlignmentConfidence AssessCellAlignment(const CellAlignment& cells, double explained_before,
+                                        double explained_after, const ConfidenceOptions& options);
 
 }  // namespace fleetmap::aggregator

@@ -55,15 +55,18 @@ struct MergeOptions {
   // A confirmation may come from evidence this close (Chebyshev, metres): the edge of a
   // pallet seen from another side or another grid phase falls into the next cell. 0..0.3 m.
   double confirm_radius_m = 0.05;
-  // The two maps must lie at least this far apart in time, seconds >= 0: consecutive maps
-  // of one vehicle touch, and a person walking past at that moment is in both.
-  double confirm_min_gap_s = 2.0;
-  // ... and at most this far apart, seconds > confirm_min_gap_s: a pallet is confirmed within
-  // the pass that saw it (the vehicles split what they see into maps of 3 s), while a person
-  // who walks back and forth comes back to the same place later, and no map need have seen
-  // the place free in between: a person's turning point is passed again within half a minute
-  // (docs/aggregator.md, "Change detection of the real system").
-  double confirm_max_gap_s = 20.0;
+  // The two maps must lie at least this far apart in time, seconds >= 0: longer than a
+  // person or a forklift stands still (a person waits a few seconds at a door or a turn, a
+  // forklift stops for a pick), which maps 2 s apart both saw standing; a pallet is still
+  // there on the vehicle's next pass or for the next vehicle. 10 s across the world suite
+  // (docs/aggregator.md, "People and forklifts").
+  double confirm_min_gap_s = 10.0;
+  // ... and at most this far apart, seconds > confirm_min_gap_s: a candidate older than
+  // this is renewed by a new sighting, not confirmed. Long enough for the next pass of a
+  // vehicle whose first pass saw the pallet for less than confirm_min_gap_s (an office
+  // corridor); a person who comes back to the same place is no candidate any more once a
+  // map in between saw the place free, or saw the person leave it (core/moving_cells.h).
+  double confirm_max_gap_s = 120.0;
   core::OccupancyThresholds thresholds;  // classify the static map's cells
   core::Status Validate() const;
 };

@@ -97,8 +97,14 @@ InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
 
 InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
                        const ScanInsertOptions& options,
-                       const std::vector<Eigen::Vector2d>& beam_directions, OccupancyGrid& grid) {
+                       const std::vector<Eigen::Vector2d>& beam_directions, OccupancyGrid& grid,
+                       MovingCells* moving) {
   assert(beam_directions.size() == scan.size());
+  if (moving && !moving->tracking()) moving = nullptr;
+  auto add = [&](const CellIndex& c, float delta) {
+    grid.AddLogOdds(c, delta);
+    if (moving) moving->Observe(c, grid.log_odds(c));
+  };
   const GridGeometry& g = grid.geometry();
   InsertStats stats;
   const Eigen::Vector2d origin = g.WorldToGrid(scanner_in_grid.translation());
@@ -113,12 +119,12 @@ InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
     }
     const Eigen::Vector2d end =
         g.WorldToGrid(scanner_in_grid.translation() + range * beam_directions[i]);
-    stats.cells_missed += WalkCells(
-        g, origin, end, [&](const CellIndex& c) { grid.AddLogOdds(c, options.miss_log_odds); });
+    stats.cells_missed +=
+        WalkCells(g, origin, end, [&](const CellIndex& c) { add(c, options.miss_log_odds); });
     if (!valid) continue;
     const CellIndex hit{int(std::floor(end.x())), int(std::floor(end.y()))};
     if (g.Contains(hit)) {
-      grid.AddLogOdds(hit, options.hit_log_odds);
+      add(hit, options.hit_log_odds);
       ++stats.hits;
     } else {
       ++stats.skipped;

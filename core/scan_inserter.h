@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "core/moving_cells.h"
 #include "core/occupancy_grid.h"
 #include "core/scan.h"
 
@@ -36,9 +37,11 @@ InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
 
 // The same with each beam's unit vector in the grid's frame given (BeamDirections), for one
 // scan inserted at one pose into several grids, the levels of a multi-resolution map.
+// `moving` (optional, of the grid's geometry) observes every cell updated.
 InsertStats InsertScan(const LaserScan& scan, const Pose2& scanner_in_grid,
                        const ScanInsertOptions& options,
-                       const std::vector<Eigen::Vector2d>& beam_directions, OccupancyGrid& grid);
+                       const std::vector<Eigen::Vector2d>& beam_directions, OccupancyGrid& grid,
+                       MovingCells* moving = nullptr);
 
 // (cos, sin) of every beam's angle in the grid's frame, for a scanner heading `theta_rad`.
 std::vector<Eigen::Vector2d> BeamDirections(const LaserScan& scan, double theta_rad);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "aggregator/node/node_config.h"
 #include "core/codecs/map_render.h"
 #include "core/file_io.h"
 #include "core/map_io.h"
@@ -39,10 +40,13 @@ options:
                     (localization, divergence, temporary maps) and the aggregator
                     truthmaps: temporary maps a perfect vehicle builds at its true poses,
                     anchored with a random error, aligned and merged by the aggregator
-  --align-mode MODE truthmaps: ours (dominant directions) or paper (the paper's sequence) [ours]
+  --aggregator-config FILE  agents, truthmaps: the aggregator's options from a
+                    fleetmap-aggregator configuration (its aggregator: section; the flags
+                    below override it where given)       [the defaults of docs/aggregator.md]
+  --align-mode MODE alignment: ours (dominant directions) or paper (the paper's sequence) [ours]
   --anchor-error-m M      truthmaps: largest anchor translation error, metres     [0.3]
   --anchor-error-deg D    truthmaps: largest anchor rotation error, degrees       [3]
-  --confirmations N       truthmaps: temporary maps of different times that must see an
+  --confirmations N       temporary maps of different times that must see an
                           obstacle before it is added: 1 (the paper) or 2         [2]
   --seed N                truthmaps: added to the scenario's seed for the anchor errors [0]
   --lcm-log FILE     score a recorded fleet run instead of running a pipeline: the
@@ -62,8 +66,8 @@ usage errors.
 )";
 
 struct Args {
-  std::string scenario, map, pipeline = "oracle", out, name, align_mode = "ours";
-  std::string anchor_error_m = "0.3", anchor_error_deg = "3", confirmations = "2", seed = "0";
+  std::string scenario, map, pipeline = "oracle", out, name, align_mode, aggregator_config;
+  std::string anchor_error_m = "0.3", anchor_error_deg = "3", confirmations, seed = "0";
   bool quiet = false;
   std::vector<std::string> lcm_logs, vehicle_maps;
   std::string epoch = "0", duration;
@@ -77,19 +81,20 @@ bool Parse(int argc, char** argv, Args& a) {
       dst = argv[++i];
       return true;
     };
-    if (arg == "--scenario"           ? !value(a.scenario)
-        : arg == "--map"              ? !value(a.map)
-        : arg == "--pipeline"         ? !value(a.pipeline)
-        : arg == "--out"              ? !value(a.out)
-        : arg == "--name"             ? !value(a.name)
-        : arg == "--align-mode"       ? !value(a.align_mode)
-        : arg == "--anchor-error-m"   ? !value(a.anchor_error_m)
-        : arg == "--anchor-error-deg" ? !value(a.anchor_error_deg)
-        : arg == "--confirmations"    ? !value(a.confirmations)
-        : arg == "--seed"             ? !value(a.seed)
-        : arg == "--epoch"            ? !value(a.epoch)
-        : arg == "--duration"         ? !value(a.duration)
-        : arg == "--lcm-log"          ? (a.lcm_logs.emplace_back(), !value(a.lcm_logs.back()))
+    if (arg == "--scenario"            ? !value(a.scenario)
+        : arg == "--map"               ? !value(a.map)
+        : arg == "--pipeline"          ? !value(a.pipeline)
+        : arg == "--out"               ? !value(a.out)
+        : arg == "--name"              ? !value(a.name)
+        : arg == "--align-mode"        ? !value(a.align_mode)
+        : arg == "--aggregator-config" ? !value(a.aggregator_config)
+        : arg == "--anchor-error-m"    ? !value(a.anchor_error_m)
+        : arg == "--anchor-error-deg"  ? !value(a.anchor_error_deg)
+        : arg == "--confirmations"     ? !value(a.confirmations)
+        : arg == "--seed"              ? !value(a.seed)
+        : arg == "--epoch"             ? !value(a.epoch)
+        : arg == "--duration"          ? !value(a.duration)
+        : arg == "--lcm-log"           ? (a.lcm_logs.emplace_back(), !value(a.lcm_logs.back()))
         : arg == "--vehicle-map" ? (a.vehicle_maps.emplace_back(), !value(a.vehicle_maps.back()))
         : arg == "--quiet"       ? (a.quiet = true, false)
                                  : true) {
@@ -106,14 +111,18 @@ void Progress(double t_s) { std::fprintf(stderr, "  simulated %.0f s\n", t_s); }
 std::string MergeTable(const eval::RunRecord& run, double resolution_m) {
   std::string table =
       "| vehicle | seq | closed (s) | accepted | added | removed | lines | residual x, y (cells), "
-      "theta (deg) | reason |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+      "theta (deg) | anchor's x, y (cells), theta (deg) | reason |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const eval::MergeRecord& m : run.merges) {
     const core::Pose2 e = core::Between(m.true_origin, m.placed_origin);
-    char row[192];
-    std::snprintf(row, sizeof(row), "| %s | %d | %.1f | %s | %d | %d | %zu | %.2f, %.2f, %.3f | ",
+    const core::Pose2 a = core::Between(m.true_origin, m.anchor_origin);
+    char row[256];
+    std::snprintf(row, sizeof(row),
+                  "| %s | %d | %.1f | %s | %d | %d | %zu | %.2f, %.2f, %.3f | %.2f, %.2f, %.3f | ",
                   m.vehicle_id.c_str(), m.tempmap_seq, m.closed_s, m.accepted ? "yes" : "no",
                   m.cells_added, m.cells_removed, m.lines.size(), e.x_m / resolution_m,
-                  e.y_m / resolution_m, e.theta_rad * 180 / M_PI);
+                  e.y_m / resolution_m, e.theta_rad * 180 / M_PI, a.x_m / resolution_m,
+                  a.y_m / resolution_m, a.theta_rad * 180 / M_PI);
     table += row + m.reason + " |\n";
   }
   return table;
@@ -137,7 +146,7 @@ core::Status CheckNumbers(const Args& args) {
   if (!(anchor_m >= 0 && anchor_m < 1e3) || !(anchor_deg >= 0 && anchor_deg <= 180))
     return core::InvalidArgument("--anchor-error-m needs metres >= 0, --anchor-error-deg 0..180");
   const double confirmations = Number(args.confirmations);
-  if (confirmations != 1.0 && confirmations != 2.0)
+  if (!args.confirmations.empty() && confirmations != 1.0 && confirmations != 2.0)
     return core::InvalidArgument("--confirmations takes 1 or 2");
   const double seed = Number(args.seed);
   if (!(seed >= 0 && seed < 4e9 && seed == std::floor(seed)))
@@ -145,24 +154,40 @@ core::Status CheckNumbers(const Args& args) {
   return core::OkStatus();
 }
 
+// The aggregator's options: the configuration file's, if one is given, with the flags that
+// were given on top.
+core::Result<aggregator::AggregatorOptions> AggregatorOptionsFor(const Args& args) {
+  aggregator::AggregatorOptions options;
+  if (!args.aggregator_config.empty()) {
+    auto config = aggregator::node::LoadProcessConfig(args.aggregator_config);
+    if (!config.ok()) return config.status();
+    options = config->aggregator;
+  }
+  if (!args.align_mode.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(options.alignment.mode,
+                              aggregator::ParseAlignmentMode(args.align_mode));
+  }
+  if (!args.confirmations.empty())
+    options.merge.confirmations = Number(args.confirmations) == 1.0 ? 1 : 2;
+  return options;
+}
+
 // The pipeline the arguments name, or a usage error (exit 2) / another error (exit 1).
 core::Result<std::unique_ptr<eval::Pipeline>> MakePipeline(const Args& args,
                                                            const sim::World& world) {
   if (args.pipeline == "oracle") return eval::MakeOraclePipeline();
+  auto aggregator = AggregatorOptionsFor(args);
+  if (!aggregator.ok()) return aggregator.status();
   if (args.pipeline == "agents") {
     eval::AgentsPipelineOptions agents;
-    FLEETMAP_ASSIGN_OR_RETURN(agents.aggregator.alignment.mode,
-                              aggregator::ParseAlignmentMode(args.align_mode));
-    agents.aggregator.merge.confirmations = Number(args.confirmations) == 1.0 ? 1 : 2;
+    agents.aggregator = *aggregator;
     return eval::MakeAgentsPipeline(world, agents);
   }
   eval::TruthTempMapOptions options;
-  FLEETMAP_ASSIGN_OR_RETURN(options.aggregator.alignment.mode,
-                            aggregator::ParseAlignmentMode(args.align_mode));
+  options.aggregator = *aggregator;
   options.anchor_error_max_m = Number(args.anchor_error_m);
   options.anchor_error_max_rad = Number(args.anchor_error_deg) * M_PI / 180.0;
   options.seed = static_cast<uint32_t>(Number(args.seed));
-  options.aggregator.merge.confirmations = Number(args.confirmations) == 1.0 ? 1 : 2;
   return eval::MakeTruthTempMapPipeline(world, options);
 }
 
@@ -206,6 +231,7 @@ int WriteResults(const Args& args, const sim::World& world, const sim::Simulator
   Figure(name, "actor_mapped", double(c.actor_cells_mapped), "cells");
   Figure(name, "align_trans_median_cells", report.align_translation_cells.median, "cells");
   Figure(name, "align_trans_p95_cells", report.align_translation_cells.p95, "cells");
+  Figure(name, "anchor_trans_p95_cells", report.anchor_translation_cells.p95, "cells");
   Figure(name, "align_rot_p95_deg", report.align_rotation_deg.p95, "deg");
   Figure(name, "detect_latency_median_s", report.detection_latency_s.median, "s");
   Figure(name, "align_trans_max_cells", report.align_translation_cells.max, "cells");

@@ -30,6 +30,7 @@ struct Options {
   std::string data_dir;
   std::string livinglab;
   std::string bin_dir;
+  std::string aggregator_config;  // passed to every evaluation
   bool quick = false;
   int jobs = 0;
   double duration_s = 0;
@@ -98,11 +99,19 @@ void Evaluate(const Options& o, std::vector<WorldOutcome>& outcomes) {
       const std::string folder = (fs::path(o.out) / w.world.name / pipeline).string();
       std::error_code ec;
       fs::create_directories(folder, ec);
-      jobs.push_back({{(fs::path(o.bin_dir) / "fleetmap-eval").string(), "--scenario",
-                       w.prepared.scenario_yaml, "--pipeline", pipeline, "--quiet", "--name",
-                       w.world.name, "--out", folder},
-                      folder + "/figures.txt",
-                      folder + "/eval.log"});
+      std::vector<std::string> argv = {(fs::path(o.bin_dir) / "fleetmap-eval").string(),
+                                       "--scenario",
+                                       w.prepared.scenario_yaml,
+                                       "--pipeline",
+                                       pipeline,
+                                       "--quiet",
+                                       "--name",
+                                       w.world.name,
+                                       "--out",
+                                       folder};
+      if (!o.aggregator_config.empty())
+        argv.insert(argv.end(), {"--aggregator-config", o.aggregator_config});
+      jobs.push_back({argv, folder + "/figures.txt", folder + "/eval.log"});
       runs.push_back({i, pipeline, folder});
     }
   const auto start = std::chrono::steady_clock::now();
@@ -218,6 +227,10 @@ int Run(int argc, char** argv) {
   app.add_option("--only", o.only, "run only these worlds (by name; repeat)");
   app.add_option("--require", o.require,
                  "a figure that must hold, e.g. 'suite.changed_f1.min>=0.9' (repeat)");
+  app.add_option("--aggregator-config", o.aggregator_config,
+                 "a fleetmap-aggregator configuration whose aggregator: options every "
+                 "evaluation uses (default: the built-in defaults)")
+      ->check(CLI::ExistingFile);
   app.add_option("--bin-dir", o.bin_dir, "the folder of fleetmap-eval")->capture_default_str();
   try {
     app.parse(argc, argv);
@@ -238,6 +251,7 @@ int Run(int argc, char** argv) {
     return 2;
   }
   if (o.duration_s == 0) o.duration_s = o.quick ? 150.0 : 180.0;
+  if (!o.aggregator_config.empty()) o.aggregator_config = fs::absolute(o.aggregator_config);
 
   const SuitePlan plan =
       PlanSuite({o.quick, (fs::path(o.data_dir) / "worlds").string(), o.livinglab});

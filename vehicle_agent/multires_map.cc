@@ -13,6 +13,7 @@ core::Status MultiResolutionMapOptions::Validate() const {
   if (std::pow(size_m / resolution_m, 2) > 64e6) {
     return core::OutOfRange("multi-resolution map: size_m / resolution_m is too large");
   }
+  FLEETMAP_RETURN_IF_ERROR(moving.Validate());
   return insert.Validate();
 }
 
@@ -25,14 +26,17 @@ MultiResolutionMap::MultiResolutionMap(const MultiResolutionMapOptions& options,
     const int cells = static_cast<int>(std::ceil(options.size_m / res));
     levels_.emplace_back(core::GridGeometry(res, cells, cells, origin));
   }
+  moving_ = core::MovingCells(levels_.front().geometry(), options.moving);
 }
 
 void MultiResolutionMap::Insert(const core::LaserScan& scan, const core::Pose2& scanner_in_map) {
   // One scan, one pose: every level's beams point the same way.
   const std::vector<Eigen::Vector2d> directions =
       core::BeamDirections(scan, scanner_in_map.theta_rad);
-  for (core::OccupancyGrid& level : levels_)
-    core::InsertScan(scan, scanner_in_map, options_.insert, directions, level);
+  for (size_t i = 0; i < levels_.size(); ++i) {
+    core::InsertScan(scan, scanner_in_map, options_.insert, directions, levels_[i],
+                     i == 0 ? &moving_ : nullptr);
+  }
 }
 
 bool MultiResolutionMap::Inside(const Eigen::Vector2d& p, double margin_m) const {

@@ -15,6 +15,7 @@ struct MultiResolutionMapOptions {
   int levels = 3;                  // 1..5; level i has resolution_m * 2^i
   double size_m = 20.0;            // side of the square area covered
   core::ScanInsertOptions insert;  // hit/miss evidence (hector: 0.9 / 0.4)
+  core::MovingCellOptions moving;  // what moved on the finest level (core/moving_cells.h)
   core::Status Validate() const;
 };
 
@@ -27,6 +28,8 @@ class MultiResolutionMap {
   int levels() const { return static_cast<int>(levels_.size()); }
   const core::OccupancyGrid& level(int i) const { return levels_[static_cast<size_t>(i)]; }
   const core::OccupancyGrid& finest() const { return levels_.front(); }
+  // The finest level's cells that something occupied and then left.
+  const core::MovingCells& moving() const { return moving_; }
 
   // Inserts the scan into every level. `scanner_in_map` is in the map's own frame.
   void Insert(const core::LaserScan& scan, const core::Pose2& scanner_in_map);
@@ -36,6 +39,7 @@ class MultiResolutionMap {
  private:
   MultiResolutionMapOptions options_;
   std::vector<core::OccupancyGrid> levels_;
+  core::MovingCells moving_;
 };
 
 }  // namespace fleetmap::vehicle_agent

@@ -47,7 +47,9 @@ std::optional<core::TempMap> TempMapBuilder::Close(double stamp_s) {
   std::optional<core::TempMap> out;
   if (!pending_.trajectory_in_temp.empty()) {
     pending_.end_s = std::max(pending_.end_s, stamp_s);
-    pending_.grid = CropToObserved(mapper_->map().finest(), options_.crop_margin_cells);
+    core::OccupancyGrid evidence = mapper_->map().finest();
+    mapper_->map().moving().Report(evidence);  // what moved is no obstacle (moving_cells.h)
+    pending_.grid = CropToObserved(evidence, options_.crop_margin_cells);
     out = std::move(pending_);
   }
   mapper_.reset();

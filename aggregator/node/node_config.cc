@@ -115,10 +115,30 @@ core::Status ReadMerge(const YamlReader& r, const YAML::Node& n, MergeOptions& o
   return Read(r, n, s, "confirm_max_gap_s", o.confirm_max_gap_s);
 }
 
+core::Status ReadCellAlignment(const YamlReader& r, const YAML::Node& n, CellAlignmentOptions& o) {
+  const std::string s = "aggregator.cell_alignment";
+  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(r, n, s, {"use", "range_m", "range_deg"}));
+  if (!n) return core::OkStatus();
+  if (n["use"]) {
+    std::string use = CellAlignmentUseName(o.use);
+    FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "use", use));
+    auto parsed = ParseCellAlignmentUse(use);
+    if (!parsed.ok()) return r.Error(n["use"], s + ".use", parsed.status().message());
+    o.use = *parsed;
+  }
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "range_m", o.range_m));
+  double range_deg = o.range_rad * 180 / M_PI;
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "range_deg", range_deg));
+  o.range_rad = range_deg * M_PI / 180;
+  return core::OkStatus();
+}
+
 core::Status ReadAggregator(const YamlReader& r, const YAML::Node& n, AggregatorOptions& o) {
-  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(r, n, "aggregator", {"merge", "store", "persistence"}));
+  FLEETMAP_RETURN_IF_ERROR(
+      OnlyKeys(r, n, "aggregator", {"merge", "cell_alignment", "store", "persistence"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(ReadMerge(r, n["merge"], o.merge));
+  FLEETMAP_RETURN_IF_ERROR(ReadCellAlignment(r, n["cell_alignment"], o.cell_alignment));
   const YAML::Node store = n["store"];
   FLEETMAP_RETURN_IF_ERROR(
       OnlyKeys(r, store, "aggregator.store", {"retained_deltas", "tile_size_cells"}));

@@ -67,22 +67,35 @@ TEST_F(MergeTest, FirstSightOnlyWithOneConfirmation) {
 TEST_F(MergeTest, AnObstacleNeedsASecondMapOfAnotherTime) {
   PlacedEvidence e = Evidence();
   Set(e, 8, 8, 10, 10, kHit);
-  MergePlan first = Plan(e, {0, 10});
+  MergePlan first = Plan(e, {0, 3});
   EXPECT_EQ(first.added, 0);
   EXPECT_EQ(first.candidates, 9);
-  Commit(first, {0, 10});
+  Commit(first, {0, 3});
   EXPECT_EQ(Semi(), 0);
-  EXPECT_EQ(Plan(e, {11, 20}).added, 0);  // touching in time: a person passing by is in both
-  const MergePlan later = Plan(e, {15, 25});
+  EXPECT_EQ(Plan(e, {3, 6}).added, 0);  // touching in time: a person passing by is in both
+  const double gap = options_.confirm_min_gap_s;
+  const MergePlan later = Plan(e, {3 + gap, 6 + gap});
   EXPECT_EQ(later.added, 9);
-  Commit(later, {15, 25});
+  Commit(later, {3 + gap, 6 + gap});
   EXPECT_EQ(Semi(), 9);
   EXPECT_TRUE(store_.candidates().empty());
+}
+
+// A forklift stops for a pick and a person waits at a door for seconds: maps a few seconds
+// apart both see them standing. The default gap is longer than such a stop.
+TEST_F(MergeTest, SomethingStandingForSecondsIsNotConfirmed) {
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  Commit(Plan(e, {0, 3}), {0, 3});
+  EXPECT_EQ(Plan(e, {6, 9}).added, 0);  // standing for 9 s, seen by maps 3 s apart
+  EXPECT_GE(options_.confirm_min_gap_s, 9.0);
 }
 
 // A person walking back and forth is at the same place again later, and no map need have seen
 // the place free in between: a sighting more than confirm_max_gap_s later starts afresh.
 TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
+  options_.confirm_min_gap_s = 2.0;
+  options_.confirm_max_gap_s = 20.0;
   PlacedEvidence e = Evidence();
   Set(e, 8, 8, 10, 10, kHit);
   Commit(Plan(e, {0, 3}), {0, 3});
@@ -94,7 +107,6 @@ TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
   EXPECT_EQ(Plan(e, {36, 39}).added, 9);  // 3 s after the renewed sighting
   options_.confirm_max_gap_s = 40.0;      // with a longer window the old sighting confirms
   EXPECT_EQ(Plan(e, {30, 33}).added, 0);  // (the renewed one lies too close in time)
-  options_.confirm_max_gap_s = 20.0;
 }
 
 TEST_F(MergeTest, ACandidateSeenFreeIsDropped) {
@@ -112,6 +124,7 @@ TEST_F(MergeTest, ACandidateSeenFreeIsDropped) {
 // Maps merge in the order they complete, not the order they were made (a lossy link, a
 // vehicle back in range): older evidence does not undo a newer change.
 TEST_F(MergeTest, AMapOlderThanACellsLastChangeLeavesIt) {
+  options_.confirm_min_gap_s = 2.0;  // a timeline of short gaps
   PlacedEvidence hit = Evidence(), free = Evidence();
   Set(hit, 8, 8, 10, 10, kHit);
   Set(free, 4, 4, 14, 14, kFree);

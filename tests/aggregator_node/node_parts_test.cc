@@ -55,6 +55,10 @@ TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
   EXPECT_EQ(m.confirm_radius_m, md.confirm_radius_m);
   EXPECT_EQ(m.confirm_min_gap_s, md.confirm_min_gap_s);
   EXPECT_EQ(m.confirm_max_gap_s, md.confirm_max_gap_s);
+  const CellAlignmentOptions &a = c->aggregator.cell_alignment, &ad = d.aggregator.cell_alignment;
+  EXPECT_EQ(a.use, ad.use);
+  EXPECT_EQ(a.range_m, ad.range_m);
+  EXPECT_NEAR(a.range_rad, ad.range_rad, 1e-12);
   EXPECT_EQ(c->aggregator.store.retained_deltas, d.aggregator.store.retained_deltas);
   EXPECT_EQ(c->aggregator.store.tiles.tile_size_cells, d.aggregator.store.tiles.tile_size_cells);
   EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges,
@@ -69,6 +73,7 @@ node: {keyframe_period_s: 0, status_period_s: 2.5, max_report_matches: 8}
 assembler: {max_pending_maps: 4, max_tiles: 100}
 aggregator:
   merge: {confirmations: 1, confirm_min_gap_s: 5, confirm_max_gap_s: 40, static_clearance_m: 0.08}
+  cell_alignment: {use: where_lines_fail, range_m: 0.5, range_deg: 4}
   store: {retained_deltas: 3}
   persistence: {snapshot_every_merges: 7}
 )",
@@ -85,6 +90,9 @@ aggregator:
   EXPECT_EQ(c->aggregator.merge.confirm_min_gap_s, 5.0);
   EXPECT_EQ(c->aggregator.merge.confirm_max_gap_s, 40.0);
   EXPECT_EQ(c->aggregator.merge.static_clearance_m, 0.08);
+  EXPECT_EQ(c->aggregator.cell_alignment.use, CellAlignmentUse::kWhereLinesFail);
+  EXPECT_EQ(c->aggregator.cell_alignment.range_m, 0.5);
+  EXPECT_NEAR(c->aggregator.cell_alignment.range_rad, 4 * M_PI / 180, 1e-12);
   EXPECT_EQ(c->aggregator.store.retained_deltas, 3);
   EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges, 7);
 }
@@ -112,6 +120,10 @@ TEST(AggregatorNodeConfigTest, MistakesNameTheFieldAndTheLine) {
   ASSERT_FALSE(nested.ok());
   EXPECT_NE(nested.status().message().find("aggregator.merge.confirmation: unknown key"),
             std::string::npos);
+  auto use = ParseProcessConfig("aggregator: {cell_alignment: {use: always}}", "agg.yaml");
+  ASSERT_FALSE(use.ok());
+  EXPECT_NE(use.status().message().find("aggregator.cell_alignment.use"), std::string::npos);
+  EXPECT_NE(use.status().message().find("known: off, where_lines_fail, first"), std::string::npos);
   EXPECT_FALSE(ParseProcessConfig("assembler: {max_tiles: 40000}", "agg.yaml").ok());
   EXPECT_FALSE(ParseProcessConfig("[1, 2]", "agg.yaml").ok());
   EXPECT_FALSE(LoadProcessConfig("/nonexistent/agg.yaml").ok());

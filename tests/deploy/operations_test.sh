@@ -46,6 +46,10 @@ rc=$?
 out=$("$bin/fleetmap-eval" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --confirmations 3 2>&1)
 rc=$?
 [[ $rc == 2 && $out == *"--confirmations takes 1 or 2"* ]] || fail "fleetmap-eval took --confirmations 3 (exit $rc): $out"
+printf 'aggregator:\n  merge:\n    confirm_gap_s: 5\n' >"$work/bad_aggregator.yaml"
+out=$("$bin/fleetmap-eval" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --pipeline agents --aggregator-config "$work/bad_aggregator.yaml" 2>&1)
+rc=$?
+[[ $rc != 0 && $out == *"aggregator.merge.confirm_gap_s: unknown key"* ]] || fail "fleetmap-eval took an aggregator configuration with an unknown key (exit $rc): $out"
 out=$("$bin/fleetmap-sick-emulator" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --s300-out "$work/s300.bin" --count -5 2>&1)
 rc=$?
 [[ $rc == 2 && $out == *"--count: not a whole number"* && ! -e $work/s300.bin ]] || fail "sick-emulator took --count -5 (exit $rc): $out"

@@ -85,6 +85,16 @@ TEST_F(EvaluatorTest, ShiftedMergeLowersF1AndShowsInAlignment) {
   EXPECT_NEAR(r.align_translation_m.p95, 0.2, 1e-9);
 }
 
+// The anchor's error beside the placed one: whether the correction helped or hurt.
+TEST_F(EvaluatorTest, AnchorErrorIsScoredBesideThePlacement) {
+  RunRecord anchored = run_;
+  ASSERT_FALSE(anchored.merges.empty());
+  for (MergeRecord& m : anchored.merges) m.anchor_origin.y_m += 0.15;  // 3 cells off
+  EXPECT_NEAR(Score(anchored).anchor_translation_cells.p95, 3.0, 1e-9);
+  EXPECT_NEAR(Score(anchored).align_translation_cells.p95, 0.0, 1e-9);
+  EXPECT_NEAR(Score(run_).anchor_translation_cells.max, 0.0, 1e-9);
+}
+
 TEST_F(EvaluatorTest, ErasedWallIsCountedCellByCell) {
   RunRecord erased = run_;
   for (double x = 2.0; x < 2.5; x += 0.05) SetCell(erased, Index(x, 0.02), core::CellState::kFree);

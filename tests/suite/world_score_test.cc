@@ -35,6 +35,20 @@ TEST(WorldScoreTest, ReadsTheFiguresOfAReport) {
   EXPECT_DOUBLE_EQ(s->RejectedShare(), 0.25);
 }
 
+// The anchor's error is read where a report gives it; a report without it has none (NaN, left
+// out of the aggregate), not 0.
+TEST(WorldScoreTest, TheAnchorsErrorIsReadWhereGiven) {
+  auto without = ReadWorldScore(Write("report_no_anchor", kReport));
+  ASSERT_TRUE(without.ok());
+  EXPECT_TRUE(std::isnan(without->anchor_trans_p95_cells));
+  std::string report = kReport;
+  report.insert(report.find("\"merges.accepted\""),
+                "\"alignment.anchor_translation_cells.p95\": 2.5, ");
+  auto with = ReadWorldScore(Write("report_anchor", report));
+  ASSERT_TRUE(with.ok()) << with.status().ToString();
+  EXPECT_DOUBLE_EQ(with->anchor_trans_p95_cells, 2.5);
+}
+
 TEST(WorldScoreTest, AReportWithoutAKeyOrNotJsonIsDataLoss) {
   std::string report = kReport;
   report.replace(report.find("\"actor_cells_mapped\""), 20, "\"actors\"");

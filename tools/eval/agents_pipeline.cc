@@ -83,6 +83,7 @@ class AgentsPipeline : public Pipeline {
     const double t0 =
         map.trajectory_in_temp.empty() ? map.start_s : map.trajectory_in_temp.front().stamp_s;
     record.true_origin = world_.VehicleStateAt(v, t0).pose * map.grid.geometry().origin();
+    record.anchor_origin = map.PlacedGeometry().origin();
     // The aggregator gets what travels: the map cut into tiles and put together again.
     auto received = AsReceived(map);
     if (!received.ok()) {

@@ -11,7 +11,7 @@ namespace {
 constexpr double kRadToDeg = 180.0 / M_PI;
 
 void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m, EvalReport& r) {
-  std::vector<double> trans, cells, rot;
+  std::vector<double> trans, cells, rot, anchor_cells;
   for (const MergeRecord& m : merges) {
     if (!m.accepted) {
       ++r.merges_rejected;
@@ -26,10 +26,13 @@ void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m,
     trans.push_back(t);
     cells.push_back(t / resolution_m);
     rot.push_back(std::abs(residual.theta_rad) * kRadToDeg);
+    const core::Pose2 anchor = core::Between(m.anchor_origin, m.true_origin);
+    anchor_cells.push_back(std::hypot(anchor.x_m, anchor.y_m) / resolution_m);
   }
   r.align_translation_m = Summarize(trans);
   r.align_translation_cells = Summarize(cells);
   r.align_rotation_deg = Summarize(rot);
+  r.anchor_translation_cells = Summarize(anchor_cells);
 }
 
 // Per vehicle: the times at which it started a temporary map (d rose above 0), and whether
@@ -154,6 +157,7 @@ std::string ReportJson(const EvalReport& r) {
   AddStats(kv, "alignment.translation_m", r.align_translation_m);
   AddStats(kv, "alignment.translation_cells", r.align_translation_cells);
   AddStats(kv, "alignment.rotation_deg", r.align_rotation_deg);
+  AddStats(kv, "alignment.anchor_translation_cells", r.anchor_translation_cells);
   kv.emplace_back("detection.changes_seen", std::to_string(r.changes_seen));
   kv.emplace_back("detection.changes_detected", std::to_string(r.changes_detected));
   AddStats(kv, "detection.latency_s", r.detection_latency_s);

@@ -27,6 +27,8 @@ struct EvalReport {
   int merges_accepted = 0;
   int merges_rejected = 0;
   SummaryStats align_translation_m, align_translation_cells, align_rotation_deg;
+  // The same merges' placement by their anchors alone (no correction), cells.
+  SummaryStats anchor_translation_cells;
   int changes_seen = 0;      // (object, vehicle) pairs where the vehicle saw the change
   int changes_detected = 0;  // ... and d(t) > 0 followed within the trigger window
   SummaryStats detection_latency_s;

@@ -63,7 +63,7 @@ class OraclePipeline : public Pipeline {
           m.closed_s = m.merged_s = seen;
           m.accepted = true;
           m.reason = "oracle";
-          m.placed_origin = m.true_origin = world.VehicleStateAt(v, seen).pose;
+          m.anchor_origin = m.placed_origin = m.true_origin = world.VehicleStateAt(v, seen).pose;
           run.merges.push_back(m);
         }
       }

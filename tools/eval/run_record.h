@@ -28,6 +28,9 @@ struct MergeRecord {
   std::string reason;
   core::Pose2 placed_origin;  // the temporary map's origin as placed (anchor + correction)
   core::Pose2 true_origin;    // where it truly lies (from the simulator's ground truth)
+  // Where the vehicle placed it (its anchor, before the aggregator's correction): compared
+  // with placed_origin, whether the alignment made the placement better or worse.
+  core::Pose2 anchor_origin;
   std::vector<LineMatchRow> lines;
   int cells_added = 0;
   int cells_removed = 0;

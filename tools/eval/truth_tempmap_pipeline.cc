@@ -42,7 +42,8 @@ class TruthTempMapPipeline : public Pipeline {
   struct Builder {
     bool building = false;
     core::TempMap map;
-    core::Pose2 start_true;  // T in the map frame, the truth
+    core::MovingCells moving;  // of map.grid
+    core::Pose2 start_true;    // T in the map frame, the truth
     core::Pose2 last_pose;
     double last_change_s = 0.0;
     double driven_m = 0.0;
@@ -87,11 +88,13 @@ class TruthTempMapPipeline : public Pipeline {
     b.map.anchor_in_map = Perturb(b.start_true);  // where a localized vehicle thinks T is
     b.map.grid = core::OccupancyGrid(core::GridGeometry(
         res, cells, cells, core::Pose2(centre.x() - half, centre.y() - half, 0)));
+    b.moving = core::MovingCells(b.map.grid.geometry(), options_.moving);
   }
 
   void Insert(const sim::ScanEvent& e, bool changed, Builder& b) {
     const core::Pose2 scanner_in_t = core::Between(b.start_true, e.true_scanner_pose);
-    core::InsertScan(e.scan, scanner_in_t, options_.insert, b.map.grid);
+    core::InsertScan(e.scan, scanner_in_t, options_.insert,
+                     core::BeamDirections(e.scan, scanner_in_t.theta_rad), b.map.grid, &b.moving);
     b.map.trajectory_in_temp.push_back(
         {e.scan.stamp_s, core::Between(b.start_true, e.true_base_pose)});
     b.driven_m += (e.true_base_pose.translation() - b.last_pose.translation()).norm();
@@ -125,6 +128,7 @@ class TruthTempMapPipeline : public Pipeline {
     Builder& b = builders_[v];
     b.building = false;
     b.map.end_s = t;
+    b.moving.Report(b.map.grid);
     MergeRecord m;
     m.vehicle_id = b.map.vehicle_id;
     m.tempmap_seq = b.map.sequence;
@@ -156,6 +160,7 @@ class TruthTempMapPipeline : public Pipeline {
                    ? "accepted"
                    : std::string(aggregator::RejectReasonName(r.reason)) + ": " + r.reason_text;
     m.placed_origin = r.correction * anchor;
+    m.anchor_origin = anchor;
     for (const aggregator::LineReportRow& row : r.lines)
       m.lines.push_back(
           {row.temp_line_id, row.static_line_id, row.distance_diff_px, row.angle_diff_deg});
@@ -215,6 +220,10 @@ void CoverAnchorErrors(double max_m, double max_rad, aggregator::AggregatorOptio
   c.max_correction_rad = std::max(c.max_correction_rad, 2.0 * max_rad);
   auto& range = options.alignment.overlap.range_m;
   range = std::max(range, max_m + 0.2);
+  // The cell alignment's window too, with a margin (its best pose must not lie at the edge).
+  auto& cells = options.cell_alignment;
+  cells.range_m = std::max(cells.range_m, max_m + 0.1);
+  cells.range_rad = std::max(cells.range_rad, max_rad + 1.0 * M_PI / 180);
 }
 
 core::Result<std::unique_ptr<Pipeline>> MakeTruthTempMapPipeline(const sim::World& world,

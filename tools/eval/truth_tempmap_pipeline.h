@@ -23,7 +23,8 @@ struct TruthTempMapOptions {
   aggregator::AggregatorOptions aggregator;  // alignment mode among them
   DisagreementOptions trigger;
   core::ScanInsertOptions insert;
-  double grid_size_m = 20.0;  // side of the square temporary grid
+  core::MovingCellOptions moving;  // what moved while a map was built is reported free
+  double grid_size_m = 20.0;       // side of the square temporary grid
   // The grid's centre lies this far from the vehicle towards the disagreement (at most as
   // far as the disagreement), so what started the map is inside it.
   double grid_lead_m = 8.0;

@@ -173,6 +173,7 @@ class Reader {
     const core::Pose2 placed(m.anchor.x_m + msg->dx_m, m.anchor.y_m + msg->dy_m,
                              core::NormalizeAngle(m.anchor.theta_rad + msg->dtheta_rad));
     r.placed_origin = placed * m.grid_origin;
+    r.anchor_origin = m.anchor * m.grid_origin;
     r.true_origin = world_.VehicleStateAt(vehicle->second, m.start_s).pose * m.grid_origin;
     for (const fleetmap::line_match_t& l : msg->matches)
       r.lines.push_back({l.temp_line_id, l.static_line_id, l.distance_diff_px, l.angle_diff_deg});

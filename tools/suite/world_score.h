@@ -16,6 +16,9 @@ struct WorldScore {
   int64_t static_erased = 0;           // cells
   int64_t actor_mapped = 0;            // cells
   double align_trans_p95_cells = 0.0;  // NaN without an accepted merge
+  // The same merges placed by their anchors alone (before the aggregator's correction); NaN
+  // without an accepted merge or in a report that does not give it.
+  double anchor_trans_p95_cells = 0.0;
   int merges_accepted = 0;
   int merges_rejected = 0;
   double run_s = 0.0;  // wall-clock seconds of the run
