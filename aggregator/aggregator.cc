@@ -31,6 +31,22 @@ std::vector<LineReportRow> Rows(const AlignmentResult& a, double resolution_m) {
   return rows;
 }
 
+// `second` where `first` was rejected, with both reasons in the text; the lines' reason where
+// both were rejected (the one a vehicle acts on, see truth_tempmap_pipeline.h).
+Assessment Either(Assessment first, Assessment second, bool cells_first) {
+  const std::string first_name = cells_first ? "cells" : "lines";
+  const std::string second_name = cells_first ? "lines" : "cells";
+  std::string& text = second.confidence.explanation;
+  if (second.confidence.accepted()) {
+    text = "aligned by " + second_name + " (by " + first_name + ": " +
+           first.confidence.explanation + ")";
+    return second;
+  }
+  text = first_name + ": " + first.confidence.explanation + "; " + second_name + ": " + text;
+  if (!cells_first) second.confidence.reason = first.confidence.reason;
+  return second;
+}
+
 }  // namespace
 
 core::Status AggregatorOptions::Validate() const {
@@ -67,6 +83,29 @@ core::Result<Aggregator> Aggregator::Open(core::OccupancyGrid static_map,
   return aggregator;
 }
 
+Assessment Aggregator::ByLines(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
+                               double before) const {
+  Assessment l;
+  l.alignment = Align(in, features_, options_.alignment);
+  const double after =
+      ExplainedFraction(features_, PlacePoints(points, l.alignment.correction * in.anchor));
+  l.confidence = AssessAlignment(l.alignment, features_.geometry().resolution_m(), before, after,
+                                 options_.confidence);
+  return l;
+}
+
+Assessment Aggregator::ByCells(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
+                               double before) const {
+  Assessment c;
+  const CellAlignment cells =
+      AlignCells(features_, in.temp_points, in.anchor, options_.cell_alignment);
+  const double after =
+      ExplainedFraction(features_, PlacePoints(points, cells.correction * in.anchor));
+  c.confidence = AssessCellAlignment(cells, before, after, options_.confidence);
+  c.alignment = WithCorrection(in, features_, options_.alignment, cells.correction);
+  return c;
+}
+
 Assessment Aggregator::Assess(const core::TempMap& map) const {
   Assessment a;
   core::Status input = CheckTempMap(map, features_.geometry(), options_.placement);
@@ -81,47 +120,18 @@ Assessment Aggregator::Assess(const core::TempMap& map) const {
   a.temp_lines = static_cast<int>(in.temp_lines.size());
   const auto points = Subsample(in.temp_points, options_.alignment.max_search_points);
   const double before = ExplainedFraction(features_, PlacePoints(points, in.anchor));
-  const auto by_lines = [&] {
-    Assessment l;
-    l.alignment = Align(in, features_, options_.alignment);
-    const double after =
-        ExplainedFraction(features_, PlacePoints(points, l.alignment.correction * in.anchor));
-    l.confidence = AssessAlignment(l.alignment, features_.geometry().resolution_m(), before, after,
-                                   options_.confidence);
-    return l;
-  };
-  const auto by_cells = [&] {
-    Assessment c;
-    const CellAlignment cells =
-        AlignCells(features_, in.temp_points, in.anchor, options_.cell_alignment);
-    const double after =
-        ExplainedFraction(features_, PlacePoints(points, cells.correction * in.anchor));
-    c.confidence = AssessCellAlignment(cells, before, after, options_.confidence);
-    c.alignment = WithCorrection(in, features_, options_.alignment, cells.correction);
-    return c;
-  };
-  // The first way tried, and the other where the first is rejected.
   const CellAlignmentUse use = options_.cell_alignment.use;
   const bool cells_first = use == CellAlignmentUse::kFirst;
-  Assessment first = cells_first ? by_cells() : by_lines();
-  const char* first_name = cells_first ? "cells" : "lines";
-  const char* second_name = cells_first ? "lines" : "cells";
-  if (first.confidence.accepted() || use == CellAlignmentUse::kOff) {
-    a.alignment = std::move(first.alignment);
-    a.confidence = std::move(first.confidence);
-    if (cells_first) a.confidence.explanation = "aligned by cells";
-  } else {
-    Assessment second = cells_first ? by_lines() : by_cells();
-    const std::string why_not_first = first.confidence.explanation;
-    a.alignment = std::move(second.alignment);
-    a.confidence = std::move(second.confidence);
-    a.confidence.explanation = a.confidence.accepted()
-                                   ? std::string("aligned by ") + second_name + " (by " +
-                                         first_name + ": " + why_not_first + ")"
-                                   : first_name + (": " + why_not_first) + "; " + second_name +
-                                         ": " + a.confidence.explanation;
-    if (!a.confidence.accepted() && !cells_first) a.confidence.reason = first.confidence.reason;
+  Assessment tried = cells_first ? ByCells(in, points, before) : ByLines(in, points, before);
+  if (!tried.confidence.accepted() && use != CellAlignmentUse::kOff) {
+    tried = Either(std::move(tried),
+                   cells_first ? ByLines(in, points, before) : ByCells(in, points, before),
+                   cells_first);
+  } else if (cells_first) {
+    tried.confidence.explanation = "aligned by cells";
   }
+  a.alignment = std::move(tried.alignment);
+  a.confidence = std::move(tried.confidence);
   a.reason = a.confidence.reason;
   a.reason_text = a.confidence.explanation;
   return a;

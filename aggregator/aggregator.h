@@ -118,6 +118,12 @@ class Aggregator {
         store_(std::move(store)),
         addable_(AddableCells(store_.static_map(), options_.merge)) {}
   MergeReport Rejected(const core::TempMap& map, const Assessment& assessment);
+  // The two ways of aligning, judged; `points` the subsampled surface cells, `before` how much
+  // of them the static map explains at the anchor.
+  Assessment ByLines(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
+                     double before) const;
+  Assessment ByCells(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
+                     double before) const;
 
   AggregatorOptions options_;
   StaticMapFeatures features_;
