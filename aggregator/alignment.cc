@@ -9,6 +9,13 @@ namespace {
 
 Eigen::Vector2d Perpendicular(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
 
+// The matching of every round after the first, once a correction is applied.
+LineMatchOptions RefinedMatching(const AlignmentOptions& o) {
+  LineMatchOptions refined = o.matching;
+  refined.max_normal_offset_m = o.refined_max_normal_offset_m;
+  return refined;
+}
+
 // Fills the report fields from the final correction.
 void Finish(const AlignmentInput& in, const StaticMapFeatures& f, const LineMatchOptions& matching,
             AlignmentResult& r) {
@@ -131,8 +138,7 @@ AlignmentResult AlignOurs(const AlignmentInput& in, const StaticMapFeatures& f,
   AlignmentResult r;
   r.axis_x = f.directions().primary();
   r.axis_y = Perpendicular(r.axis_x);
-  LineMatchOptions refined = o.matching;
-  refined.max_normal_offset_m = o.refined_max_normal_offset_m;
+  const LineMatchOptions refined = RefinedMatching(o);
   for (int round = 0; round < o.iterations; ++round) {
     const LineMatchOptions& window = round == 0 ? o.matching : refined;
     auto placed = PlaceSegments(in.temp_lines, r.correction * in.anchor);
@@ -210,9 +216,7 @@ AlignmentResult WithCorrection(const AlignmentInput& input, const StaticMapFeatu
   r.axis_x = features.directions().primary();
   r.axis_y = Perpendicular(r.axis_x);
   r.correction = correction;
-  LineMatchOptions refined = options.matching;
-  refined.max_normal_offset_m = options.refined_max_normal_offset_m;
-  Finish(input, features, refined, r);
+  Finish(input, features, RefinedMatching(options), r);
   return r;
 }
 
