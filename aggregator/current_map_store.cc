@@ -61,6 +61,7 @@ bool CurrentMapStore::Fits(const CellChange& c) const {
     case CellChangeKind::kCandidate:  // new, or renewed by a later sighting
       return !semi;
     case CellChangeKind::kCandidateDropped:
+    case CellChangeKind::kCandidateWatched:
       return candidate;
   }
   return false;
@@ -82,9 +83,14 @@ void CurrentMapStore::ApplyChange(const CellChange& c, const TimeSpan& span) {
       changed_at_s_[i] = span.end_s;
       break;
     case CellChangeKind::kCandidate:
-      candidates_[c.cell] = span;
+      candidates_[c.cell] = Candidate::SeenBy(span);
       candidate_mask_[i] = 1;
       break;
+    case CellChangeKind::kCandidateWatched: {
+      Candidate& candidate = candidates_.at(c.cell);
+      candidate.last_seen_end_s = std::max(candidate.last_seen_end_s, span.end_s);
+      break;
+    }
     case CellChangeKind::kCandidateDropped:
       candidates_.erase(c.cell);
       candidate_mask_[i] = 0;

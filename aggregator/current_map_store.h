@@ -41,7 +41,7 @@ class CurrentMapStore {
   const std::vector<uint8_t>& semi_static() const { return semi_static_; }
   // Cells seen occupied once, waiting for confirmation, with the span of the map that saw them
   // (last).
-  const std::map<int64_t, TimeSpan>& candidates() const { return candidates_; }
+  const std::map<int64_t, Candidate>& candidates() const { return candidates_; }
   const std::vector<uint8_t>& candidate_mask() const { return candidate_mask_; }
   // Per cell: the end of the temporary map whose evidence last added or removed it, s
   // (-infinity if none did). Rebuilt by replaying the commits, like everything else here.
@@ -76,7 +76,7 @@ class CurrentMapStore {
   core::OccupancyGrid current_;
   std::vector<uint8_t> semi_static_;
   std::vector<uint8_t> static_occupied_;
-  std::map<int64_t, TimeSpan> candidates_;
+  std::map<int64_t, Candidate> candidates_;
   std::vector<uint8_t> candidate_mask_;  // per cell, 1 for a key of candidates_
   std::vector<double> changed_at_s_;
   core::TileLayout layout_;

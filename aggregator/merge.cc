@@ -74,9 +74,22 @@ class Planner {
 
   // Whether the candidate (x, y) was seen by a map confirm_min_gap_s to confirm_max_gap_s
   // away in time from this one.
+  // A candidate confirms if seen by a map confirm_min_gap_s to confirm_max_gap_s away in time
+  // from this one, or if this map ends a watch of it that lasted confirm_min_gap_s.
   bool Confirms(int x, int y) const {
-    return Candidate(x, y) && in_.candidates->at(static_cast<int64_t>(Global(x, y)))
-                                  .Apart(span_, o_.confirm_min_gap_s, o_.confirm_max_gap_s);
+    if (!Candidate(x, y)) return false;
+    const aggregator::Candidate& c = CandidateAt(x, y);
+    return c.first.Apart(span_, o_.confirm_min_gap_s, o_.confirm_max_gap_s) ||
+           (o_.confirm_by_watch && ContinuesWatch(c) &&
+            span_.middle_s() - c.watched_from_s >= o_.confirm_min_gap_s);
+  }
+  const aggregator::Candidate& CandidateAt(int x, int y) const {
+    return in_.candidates->at(static_cast<int64_t>(Global(x, y)));
+  }
+  // Whether this map starts when the last map that saw the candidate ended (or overlaps it:
+  // another vehicle watching at the same time) and ends later.
+  bool ContinuesWatch(const aggregator::Candidate& c) const {
+    return span_.start_s <= c.last_seen_end_s + o_.watch_join_s && span_.end_s > c.last_seen_end_s;
   }
   // A candidate at or near (x, y) that confirms.
   bool EarlierSightingNear(int x, int y) const {
@@ -85,8 +98,7 @@ class Planner {
   }
   // A candidate that can no longer be confirmed or dropped by a map this late.
   bool Stale(int x, int y) const {
-    return Candidate(x, y) && !in_.candidates->at(static_cast<int64_t>(Global(x, y)))
-                                   .Near(span_, o_.confirm_max_gap_s);
+    return Candidate(x, y) && !CandidateAt(x, y).first.Near(span_, o_.confirm_max_gap_s);
   }
 
   // A semi-static cell is removed when seen free, with nothing occupied next to it and every
@@ -110,10 +122,14 @@ class Planner {
     if (o_.confirmations <= 1) return seen ? std::optional(CellChangeKind::kAdded) : std::nullopt;
     if (seen && EarlierSightingNear(x, y)) return CellChangeKind::kAdded;
     // A candidate whose neighbourhood this map sees occupied at another time.
-    if (candidate && EarlierSightingNear(x, y) &&
-        AnyNear(x, y, cells_.confirm_radius, [&](int nx, int ny) { return Strong(nx, ny); })) {
-      return CellChangeKind::kAdded;
-    }
+    const bool neighbour_strong =
+        candidate &&
+        AnyNear(x, y, cells_.confirm_radius, [&](int nx, int ny) { return Strong(nx, ny); });
+    if (neighbour_strong && EarlierSightingNear(x, y)) return CellChangeKind::kAdded;
+    // ... or at the same time as the last map that saw it: its watch goes on.
+    if (o_.confirm_by_watch && candidate && (Strong(x, y) || neighbour_strong) &&
+        ContinuesWatch(CandidateAt(x, y)))
+      return CellChangeKind::kCandidateWatched;
     // First seen, or seen again too late to confirm: a candidate from this map on.
     if (seen && (!candidate || Stale(x, y))) return CellChangeKind::kCandidate;
     return std::nullopt;
@@ -148,8 +164,9 @@ class Planner {
       case CellChangeKind::kRemoved:
         return in_.changed_at_s && span_.end_s < (*in_.changed_at_s)[Global(x, y)];
       case CellChangeKind::kCandidateDropped:
-        return span_.end_s < in_.candidates->at(static_cast<int64_t>(Global(x, y))).end_s;
+        return span_.end_s < CandidateAt(x, y).last_seen_end_s;
       case CellChangeKind::kCandidate:
+      case CellChangeKind::kCandidateWatched:
         return false;
     }
     return false;
@@ -174,6 +191,9 @@ class Planner {
             break;
           case CellChangeKind::kCandidateDropped:
             ++plan.dropped;
+            break;
+          case CellChangeKind::kCandidateWatched:
+            ++plan.watched;
             break;
         }
       }
@@ -208,6 +228,7 @@ core::Status MergeOptions::Validate() const {
     return core::InvalidArgument("merge.confirm_radius_m must be in [0, 0.3] m");
   if (!(confirm_min_gap_s >= 0))
     return core::InvalidArgument("merge.confirm_min_gap_s must be >= 0");
+  if (!(watch_join_s >= 0)) return core::InvalidArgument("merge.watch_join_s must be >= 0");
   if (!(confirm_max_gap_s > confirm_min_gap_s))
     return core::InvalidArgument("merge.confirm_max_gap_s must be > confirm_min_gap_s");
   return core::OkStatus();

@@ -10,7 +10,11 @@
 // next to it, occupied again adds it; so does a confirmed obstacle next to it (another face of
 // the same pallet). A candidate seen free is dropped; one too old to confirm that is seen
 // again starts afresh. A person or a forklift is not at the same place in two such maps, a
-// pallet is. confirmations = 1 adds at first sight, as the paper does.
+// pallet is. Nor is one seen occupied by every map of a watch that lasts confirm_min_gap_s
+// (maps each starting when the last one that saw the cell ended, as a vehicle's temporary
+// maps follow each other while it passes), which also adds it with confirm_by_watch: one pass
+// of one vehicle past a new pallet is enough, a person standing for a few seconds is not.
+// confirmations = 1 adds at first sight, as the paper does.
 #pragma once
 
 #include <map>
@@ -67,6 +71,15 @@ struct MergeOptions {
   // corridor); a person who comes back to the same place is no candidate any more once a
   // map in between saw the place free, or saw the person leave it (core/moving_cells.h).
   double confirm_max_gap_s = 120.0;
+  // Whether a watch of confirm_min_gap_s confirms (see above). Off by default: on the world
+  // suite it is about even, it serves the single-vehicle scenarios, and in a small room it
+  // adds more faces of a box than a later pass sees free, so that half of the box stays
+  // after it is taken away (docs/aggregator.md, "People and forklifts").
+  bool confirm_by_watch = false;
+  // A map that starts at most this long after the end of the last map that saw a candidate
+  // continues its watch, seconds >= 0 (a vehicle's next temporary map starts within a scan
+  // period of the last one's end; a pause longer than this breaks the watch).
+  double watch_join_s = 1.0;
   core::OccupancyThresholds thresholds;  // classify the static map's cells
   core::Status Validate() const;
 };
@@ -98,14 +111,23 @@ struct TimeSpan {
   bool Apart(const TimeSpan& o, double min_gap_s, double max_gap_s) const {
     return !Near(o, min_gap_s) && Near(o, max_gap_s);
   }
+  double middle_s() const { return 0.5 * (start_s + end_s); }
+};
+
+// A cell seen occupied where nothing was, not yet an obstacle.
+struct Candidate {
+  TimeSpan first;              // the map that saw it first (or that renewed it)
+  double watched_from_s = 0;   // the end of the first map of its current watch
+  double last_seen_end_s = 0;  // the end of the last map of that watch
+  static Candidate SeenBy(const TimeSpan& span) { return {span, span.end_s, span.end_s}; }
 };
 
 // What the merge reads of the current map.
 struct MergeInputs {
-  const std::vector<uint8_t>* addable = nullptr;            // AddableCells of the static map
-  const std::vector<uint8_t>* semi_static = nullptr;        // per cell, 1: a semi-static obstacle
-  const std::map<int64_t, TimeSpan>* candidates = nullptr;  // cell -> the map that saw it last
-  const std::vector<uint8_t>* candidate_mask = nullptr;     // per cell, 1: a candidate
+  const std::vector<uint8_t>* addable = nullptr;             // AddableCells of the static map
+  const std::vector<uint8_t>* semi_static = nullptr;         // per cell, 1: a semi-static obstacle
+  const std::map<int64_t, Candidate>* candidates = nullptr;  // cell -> its sightings
+  const std::vector<uint8_t>* candidate_mask = nullptr;      // per cell, 1: a candidate
   // Per cell, the end of the map whose evidence last added or removed it, s. Optional (null:
   // every map counts as newer).
   const std::vector<double>* changed_at_s = nullptr;
@@ -117,6 +139,7 @@ struct MergePlan {
   int added = 0;
   int removed = 0;
   int candidates = 0;  // new (or renewed) candidates
+  int watched = 0;     // candidates whose watch this map continued
   int dropped = 0;     // candidates seen free
 };
 

@@ -28,7 +28,7 @@ core::Status CheckChanges(const std::vector<CellChange>& changes) {
 
 }  // namespace
 
-bool IsValidCellChangeKind(uint8_t code) { return code >= 1 && code <= 4; }
+bool IsValidCellChangeKind(uint8_t code) { return code >= 1 && code <= 5; }
 
 const char* CellChangeKindName(CellChangeKind kind) {
   switch (kind) {
@@ -40,6 +40,8 @@ const char* CellChangeKindName(CellChangeKind kind) {
       return "candidate";
     case CellChangeKind::kCandidateDropped:
       return "candidate_dropped";
+    case CellChangeKind::kCandidateWatched:
+      return "candidate_watched";
   }
   return "unknown";
 }

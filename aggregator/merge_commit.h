@@ -32,6 +32,8 @@ enum class CellChangeKind : uint8_t {
   // the later map's time. The map's cells do not change.
   kCandidate = 3,
   kCandidateDropped = 4,  // a candidate seen free again: it was passing by
+  // A candidate seen occupied again by a map that continues its watch (merge.h).
+  kCandidateWatched = 5,
 };
 bool IsValidCellChangeKind(uint8_t code);
 const char* CellChangeKindName(CellChangeKind kind);

@@ -98,11 +98,11 @@ core::Status RefuseCellKeys(const YamlReader& r, const YAML::Node& n, const std:
 core::Status ReadMerge(const YamlReader& r, const YAML::Node& n, MergeOptions& o) {
   const std::string s = "aggregator.merge";
   FLEETMAP_RETURN_IF_ERROR(RefuseCellKeys(r, n, s));
-  FLEETMAP_RETURN_IF_ERROR(
-      OnlyKeys(r, n, s,
-               {"add_min_log_odds", "remove_max_log_odds", "static_clearance_m",
-                "min_occupied_neighbours", "removal_clearance_m", "confirmations",
-                "confirm_radius_m", "confirm_min_gap_s", "confirm_max_gap_s"}));
+  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(
+      r, n, s,
+      {"add_min_log_odds", "remove_max_log_odds", "static_clearance_m", "min_occupied_neighbours",
+       "removal_clearance_m", "confirmations", "confirm_radius_m", "confirm_min_gap_s",
+       "confirm_max_gap_s", "confirm_by_watch", "watch_join_s"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "add_min_log_odds", o.add_min_log_odds));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "remove_max_log_odds", o.remove_max_log_odds));
@@ -112,7 +112,9 @@ core::Status ReadMerge(const YamlReader& r, const YAML::Node& n, MergeOptions& o
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirmations", o.confirmations));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirm_radius_m", o.confirm_radius_m));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirm_min_gap_s", o.confirm_min_gap_s));
-  return Read(r, n, s, "confirm_max_gap_s", o.confirm_max_gap_s);
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirm_max_gap_s", o.confirm_max_gap_s));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirm_by_watch", o.confirm_by_watch));
+  return Read(r, n, s, "watch_join_s", o.watch_join_s);
 }
 
 core::Status ReadCellAlignment(const YamlReader& r, const YAML::Node& n, CellAlignmentOptions& o) {

@@ -90,7 +90,21 @@ TEST(CurrentMapStoreTest, CandidatesLeaveTheMapAlone) {
   EXPECT_TRUE(delta->tiles.empty());
   EXPECT_EQ(store.version(), 1u);  // an accepted merge, even without a visible change
   EXPECT_EQ(store.candidates().count(500), 1u);
-  EXPECT_EQ(store.candidates().at(500).start_s, 1.0);
+  EXPECT_EQ(store.candidates().at(500).first.start_s, 1.0);
+  EXPECT_EQ(store.current_map().cells(), Map().cells());
+}
+
+TEST(CurrentMapStoreTest, AWatchedCandidateKeepsItsFirstSightingAndWhenLastSeen) {
+  CurrentMapStore store(Map(), {});
+  EXPECT_EQ(store.Apply(Commit(1, {{500, CellChangeKind::kCandidateWatched}})).status().code(),
+            core::StatusCode::kFailedPrecondition);  // no candidate there
+  ASSERT_TRUE(store.Apply(Commit(1, {{500, CellChangeKind::kCandidate}})).ok());
+  EXPECT_EQ(store.candidates().at(500).watched_from_s, 2.0);  // the first map's end
+  ASSERT_TRUE(store.Apply(Commit(2, {{500, CellChangeKind::kCandidateWatched}}, 2)).ok());
+  const Candidate& c = store.candidates().at(500);
+  EXPECT_EQ(c.first.start_s, 1.0);
+  EXPECT_EQ(c.watched_from_s, 2.0);
+  EXPECT_EQ(c.last_seen_end_s, 4.0);
   EXPECT_EQ(store.current_map().cells(), Map().cells());
 }
 
@@ -98,8 +112,8 @@ TEST(CurrentMapStoreTest, ACandidateSeenAgainIsRenewedButNoObstacleIs) {
   CurrentMapStore store(Map(), {});
   ASSERT_TRUE(store.Apply(Commit(1, {{500, CellChangeKind::kCandidate}})).ok());
   ASSERT_TRUE(store.Apply(Commit(2, {{500, CellChangeKind::kCandidate}}, 2)).ok());
-  EXPECT_EQ(store.candidates().at(500).start_s, 2.0);  // the later map's span
-  EXPECT_EQ(store.candidates().at(500).end_s, 4.0);
+  EXPECT_EQ(store.candidates().at(500).first.start_s, 2.0);  // the later map's span
+  EXPECT_EQ(store.candidates().at(500).first.end_s, 4.0);
   ASSERT_TRUE(store.Apply(Commit(3, {{600, CellChangeKind::kAdded}}, 3)).ok());
   EXPECT_EQ(store.Apply(Commit(4, {{600, CellChangeKind::kCandidate}}, 4)).status().code(),
             core::StatusCode::kFailedPrecondition);

@@ -91,6 +91,48 @@ TEST_F(MergeTest, SomethingStandingForSecondsIsNotConfirmed) {
   EXPECT_GE(options_.confirm_min_gap_s, 9.0);
 }
 
+// One vehicle passing a new pallet sees it in each of its temporary maps, one after the other,
+// for longer than the gap: that watch adds it, without a second pass.
+TEST_F(MergeTest, AWatchLongerThanTheGapAddsIt) {
+  options_.confirm_by_watch = true;
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  Commit(Plan(e, {0, 3}), {0, 3});
+  for (double t = 3; t < 12; t += 3) {  // its watch from 3 s to the map's middle: < 10 s
+    const MergePlan more = Plan(e, {t, t + 3});
+    EXPECT_EQ(more.added, 0) << t;
+    EXPECT_EQ(more.watched, 9) << t;
+    Commit(more, {t, t + 3});
+  }
+  EXPECT_EQ(store_.candidates().at(9 * 20 + 9).last_seen_end_s, 12.0);
+  EXPECT_EQ(store_.candidates().at(9 * 20 + 9).first.start_s, 0.0);
+  options_.confirm_by_watch = false;
+  EXPECT_EQ(Plan(e, {12, 15}).added, 0);  // off: only a map 10 s after the first confirms
+  options_.confirm_by_watch = true;
+  const MergePlan last = Plan(e, {12, 15});  // 13.5 - 3 >= 10 s
+  EXPECT_EQ(last.added, 9);
+  Commit(last, {12, 15});
+  EXPECT_EQ(Semi(), 9);
+}
+
+// A person who stands, walks off and comes back: the maps that saw him are not one after the
+// other, and a pause breaks the watch.
+TEST_F(MergeTest, AWatchBrokenByAPauseConfirmsNothing) {
+  options_.confirm_by_watch = true;
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  Commit(Plan(e, {0, 3}), {0, 3});
+  Commit(Plan(e, {3, 6}), {3, 6});
+  const PlacedEvidence unseen = Evidence();
+  Commit(Plan(unseen, {6, 9}), {6, 9});  // the place not seen: the watch stops at 6 s
+  const MergePlan back = Plan(e, {9, 12});
+  EXPECT_EQ(back.watched, 0);
+  Commit(back, {9, 12});
+  EXPECT_EQ(Plan(e, {12, 15}).added, 0);  // 9 s after the first map ended: no confirmation
+  options_.watch_join_s = 3.5;  // long enough to join 12 s to 9 s, not to the watch's 6 s:
+  EXPECT_EQ(Plan(e, {12, 15}).added, 0);  // the sighting after the pause did not extend it
+}
+
 // A person walking back and forth is at the same place again later, and no map need have seen
 // the place free in between: a sighting more than confirm_max_gap_s later starts afresh.
 TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
@@ -103,7 +145,7 @@ TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
   EXPECT_EQ(late.added, 0);
   EXPECT_EQ(late.candidates, 9);
   Commit(late, {30, 33});
-  EXPECT_EQ(store_.candidates().at(9 * 20 + 9).start_s, 30.0);
+  EXPECT_EQ(store_.candidates().at(9 * 20 + 9).first.start_s, 30.0);
   EXPECT_EQ(Plan(e, {36, 39}).added, 9);  // 3 s after the renewed sighting
   options_.confirm_max_gap_s = 40.0;      // with a longer window the old sighting confirms
   EXPECT_EQ(Plan(e, {30, 33}).added, 0);  // (the renewed one lies too close in time)

@@ -55,6 +55,8 @@ TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
   EXPECT_EQ(m.confirm_radius_m, md.confirm_radius_m);
   EXPECT_EQ(m.confirm_min_gap_s, md.confirm_min_gap_s);
   EXPECT_EQ(m.confirm_max_gap_s, md.confirm_max_gap_s);
+  EXPECT_EQ(m.confirm_by_watch, md.confirm_by_watch);
+  EXPECT_EQ(m.watch_join_s, md.watch_join_s);
   const CellAlignmentOptions &a = c->aggregator.cell_alignment, &ad = d.aggregator.cell_alignment;
   EXPECT_EQ(a.use, ad.use);
   EXPECT_EQ(a.range_m, ad.range_m);
@@ -72,7 +74,8 @@ state_dir: state
 node: {keyframe_period_s: 0, status_period_s: 2.5, max_report_matches: 8}
 assembler: {max_pending_maps: 4, max_tiles: 100}
 aggregator:
-  merge: {confirmations: 1, confirm_min_gap_s: 5, confirm_max_gap_s: 40, static_clearance_m: 0.08}
+  merge: {confirmations: 1, confirm_min_gap_s: 5, confirm_max_gap_s: 40, static_clearance_m: 0.08,
+          confirm_by_watch: true, watch_join_s: 0.5}
   cell_alignment: {use: where_lines_fail, range_m: 0.5, range_deg: 4}
   store: {retained_deltas: 3}
   persistence: {snapshot_every_merges: 7}
@@ -90,6 +93,8 @@ aggregator:
   EXPECT_EQ(c->aggregator.merge.confirm_min_gap_s, 5.0);
   EXPECT_EQ(c->aggregator.merge.confirm_max_gap_s, 40.0);
   EXPECT_EQ(c->aggregator.merge.static_clearance_m, 0.08);
+  EXPECT_TRUE(c->aggregator.merge.confirm_by_watch);
+  EXPECT_EQ(c->aggregator.merge.watch_join_s, 0.5);
   EXPECT_EQ(c->aggregator.cell_alignment.use, CellAlignmentUse::kWhereLinesFail);
   EXPECT_EQ(c->aggregator.cell_alignment.range_m, 0.5);
   EXPECT_NEAR(c->aggregator.cell_alignment.range_rad, 4 * M_PI / 180, 1e-12);

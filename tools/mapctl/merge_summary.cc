@@ -22,6 +22,8 @@ void Count(CellChangeKind kind, MergeSummary& s) {
     case CellChangeKind::kCandidateDropped:
       ++s.candidates_dropped;
       break;
+    case CellChangeKind::kCandidateWatched:  // seen again: neither the map nor the count change
+      break;
   }
 }
 
