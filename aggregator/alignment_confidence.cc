@@ -1,5 +1,6 @@
 #include "aggregator/alignment_confidence.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -29,8 +30,11 @@ void Measure(const AlignmentResult& a, double resolution_m, AlignmentConfidence&
 }
 
 // The first failed check, in order of how fundamental it is.
-void Judge(const AlignmentResult& a, const ConfidenceOptions& o, AlignmentConfidence& c) {
+void Judge(const AlignmentResult& a, const ConfidenceOptions& o, double resolution_m,
+           AlignmentConfidence& c) {
   const double moved = std::hypot(a.dx_m, a.dy_m);
+  const double max_residual_cells =  // to a millionth of a cell: 0.075 m at 0.05 m are 1.5
+      std::max(1.0, std::round(o.max_residual_m / resolution_m * 1e6) / 1e6);
   auto reject = [&](RejectReason reason, std::string why) {
     c.reason = reason;
     c.explanation = std::move(why);
@@ -38,9 +42,9 @@ void Judge(const AlignmentResult& a, const ConfidenceOptions& o, AlignmentConfid
   if (c.matched_lines < o.min_matched_lines || c.matched_length_m < o.min_matched_length_m) {
     reject(RejectReason::kTooFewStaticLines, Format("%.0f static lines matched, %.2f m long",
                                                     double(c.matched_lines), c.matched_length_m));
-  } else if (c.residual_cells > o.max_residual_cells) {
-    reject(RejectReason::kLinesDisagree, Format("median line residual %.2f cells > %.2f",
-                                                c.residual_cells, o.max_residual_cells));
+  } else if (c.residual_cells > max_residual_cells) {
+    reject(RejectReason::kLinesDisagree,
+           Format("median line residual %.2f cells > %.2f", c.residual_cells, max_residual_cells));
   } else if (c.angle_residual_deg > o.max_angle_residual_rad * 180 / M_PI) {
     reject(RejectReason::kLinesDisagree,
            Format("median angle residual %.2f deg > %.2f", c.angle_residual_deg,
@@ -97,8 +101,7 @@ core::Status ConfidenceOptions::Validate() const {
     return core::InvalidArgument("confidence.min_matched_lines must be >= 1");
   if (!(min_matched_length_m >= 0))
     return core::InvalidArgument("confidence.min_matched_length_m must be >= 0");
-  if (!(max_residual_cells > 0))
-    return core::InvalidArgument("confidence.max_residual_cells must be > 0");
+  if (!(max_residual_m > 0)) return core::InvalidArgument("confidence.max_residual_m must be > 0");
   if (!(max_angle_residual_rad > 0))
     return core::InvalidArgument("confidence.max_angle_residual_rad must be > 0");
   if (!(max_correction_m > 0))
@@ -124,7 +127,7 @@ AlignmentConfidence AssessAlignment(const AlignmentResult& alignment, double res
   c.explained_after = explained_after;
   c.overlap_gain = explained_after - explained_before;
   Measure(alignment, resolution_m, c);
-  Judge(alignment, options, c);
+  Judge(alignment, options, resolution_m, c);
   const double length_term =
       std::min(1.0, c.matched_length_m / (4.0 * options.min_matched_length_m));
   c.score = length_term * explained_after / (1.0 + c.residual_cells);

@@ -32,7 +32,9 @@ struct ConfidenceOptions {
   // checks below) the shift along it. (2 lines rejected maps the evaluation aligned well.)
   int min_matched_lines = 1;
   double min_matched_length_m = 2.0;
-  double max_residual_cells = 1.5;  // weighted median |normal distance| after correction
+  // Weighted median |normal distance| after correction, metres (at least one cell of the
+  // map: a line's position is known to a cell's quantisation at best); 1.5 cells at 0.05 m.
+  double max_residual_m = 0.075;
   double max_angle_residual_rad = 2.0 * M_PI / 180;  // weighted median |angle difference|
   double max_correction_m = 0.75;                    // the anchor's displacement
   double max_correction_rad = 6.0 * M_PI / 180;

@@ -10,11 +10,13 @@
 
 namespace fleetmap::aggregator {
 
+// In pixels of the picture; for a grid, HoughOptionsFor (line_features.h) sets them from
+// lengths in metres.
 struct HoughOptions {
   double rho_cells = 1.0;              // distance resolution of the accumulator, cells, > 0
   double theta_step_rad = M_PI / 360;  // angle resolution of the accumulator, (0, pi/8]
   int min_votes = 12;                  // accumulator votes a line needs, >= 1
-  double min_length_cells = 10.0;      // shorter segments are dropped (10 cells = 0.5 m at 5 cm)
+  double min_length_cells = 10.0;      // shorter segments are dropped
   double max_gap_cells = 4.0;          // set pixels this far apart still join one segment, >= 0
   core::Status Validate() const;
 };

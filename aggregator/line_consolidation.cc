@@ -82,6 +82,25 @@ LineSegment Refit(const Group& g, const std::vector<Eigen::Vector2d>& pixels) {
   return {mean + t0 * d, mean + t1 * d};
 }
 
+// Two groups can refit to the same edge: a Hough segment that crosses a thick edge slantwise
+// (more than max_angle_diff_rad off it) starts a group of its own, and its band then holds
+// the same pixels. A refitted line that lies on a longer one, within its extent (and a cell),
+// is that line again and is dropped; one that reaches beyond it stays (the chords of a curved
+// wall overlap, and are not one straight line). `lines` longest first.
+std::vector<LineSegment> WithoutDuplicates(const std::vector<LineSegment>& lines,
+                                           const ConsolidationOptions& o) {
+  std::vector<LineSegment> kept;
+  for (const LineSegment& s : lines) {
+    const bool again = std::any_of(kept.begin(), kept.end(), [&](const LineSegment& k) {
+      const Group g{k, 0.0, k.length()};
+      const double ta = k.Along(s.a), tb = k.Along(s.b);
+      return Joins(g, s, o) && std::min(ta, tb) >= -1.0 && std::max(ta, tb) <= k.length() + 1.0;
+    });
+    if (!again) kept.push_back(s);
+  }
+  return kept;
+}
+
 }  // namespace
 
 core::Status ConsolidationOptions::Validate() const {
@@ -136,7 +155,7 @@ std::vector<LineSegment> ConsolidateSegments(const std::vector<LineSegment>& raw
   std::stable_sort(result.begin(), result.end(), [](const LineSegment& x, const LineSegment& y) {
     return x.length() > y.length();
   });
-  return result;
+  return WithoutDuplicates(result, options);
 }
 
 }  // namespace fleetmap::aggregator

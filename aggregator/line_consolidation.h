@@ -13,6 +13,8 @@
 
 namespace fleetmap::aggregator {
 
+// In pixels of the picture; for a grid, ConsolidationOptionsFor (line_features.h) sets them
+// from lengths in metres.
 struct ConsolidationOptions {
   double max_angle_diff_rad = 4.0 * M_PI / 180;  // segments of one edge differ by at most this
   double max_normal_distance_cells = 2.0;  // end points this close to the group's line join it

@@ -1,13 +1,52 @@
 #include "aggregator/line_features.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace fleetmap::aggregator {
 
 core::Status LineFeatureOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(thresholds.Validate());
   if (!(strong_log_odds > core::ProbabilityToLogOdds(thresholds.occupied_probability)))
     return core::InvalidArgument("lines.strong_log_odds must lie above the occupied threshold");
-  FLEETMAP_RETURN_IF_ERROR(hough.Validate());
-  return consolidation.Validate();
+  if (!(min_length_m >= 0 && min_vote_length_m > 0 && max_hough_gap_m >= 0 &&
+        max_join_gap_m >= 0)) {
+    return core::InvalidArgument(
+        "lines: need min_length_m >= 0, min_vote_length_m > 0, max_hough_gap_m >= 0, "
+        "max_join_gap_m >= 0");
+  }
+  FLEETMAP_RETURN_IF_ERROR(HoughOptionsFor(*this, 0.05).Validate());
+  return ConsolidationOptionsFor(*this, 0.05).Validate();
+}
+
+namespace {
+
+// Metres in cells, to a millionth of a cell: 0.3 m at 0.05 m are 6 cells, not 5.999...
+double Cells(double metres, double resolution_m) {
+  return std::round(metres / resolution_m * 1e6) / 1e6;
+}
+
+}  // namespace
+
+HoughOptions HoughOptionsFor(const LineFeatureOptions& o, double resolution_m) {
+  HoughOptions h;
+  h.rho_cells = 1.0;
+  h.theta_step_rad = o.theta_step_rad;
+  h.min_votes = std::max(3, static_cast<int>(std::lround(o.min_vote_length_m / resolution_m)));
+  h.min_length_cells = std::max(2.0, Cells(o.min_length_m, resolution_m));
+  h.max_gap_cells = std::max(1.0, Cells(o.max_hough_gap_m, resolution_m));
+  return h;
+}
+
+ConsolidationOptions ConsolidationOptionsFor(const LineFeatureOptions& o, double resolution_m) {
+  ConsolidationOptions c;
+  c.max_angle_diff_rad = o.max_angle_diff_rad;
+  c.max_normal_distance_cells = o.max_join_distance_cells;
+  c.max_gap_cells = std::max(1.0, Cells(o.max_join_gap_m, resolution_m));
+  c.fit_band_cells = o.fit_band_cells;
+  c.min_length_cells = std::max(2.0, Cells(o.min_length_m, resolution_m));
+  c.min_fit_pixels = o.min_fit_pixels;
+  return c;
 }
 
 LineSegment CellSegmentToFrame(const LineSegment& cells, const core::GridGeometry& geometry) {
@@ -45,9 +84,12 @@ core::Result<LineFeatures> ExtractLineFeatures(const core::OccupancyGrid& grid,
                        ? SurfaceCells(grid, options.thresholds)
                        : CellsAtLeast(grid, options.strong_log_odds);
   std::vector<LineSegment> raw;
-  FLEETMAP_ASSIGN_OR_RETURN(raw, DetectHoughSegments(features.edges, options.hough));
+  const double resolution_m = grid.geometry().resolution_m();
+  FLEETMAP_ASSIGN_OR_RETURN(
+      raw, DetectHoughSegments(features.edges, HoughOptionsFor(options, resolution_m)));
   features.raw_segments = static_cast<int>(raw.size());
-  for (const LineSegment& s : ConsolidateSegments(raw, features.edges, options.consolidation))
+  for (const LineSegment& s :
+       ConsolidateSegments(raw, features.edges, ConsolidationOptionsFor(options, resolution_m)))
     features.lines.push_back(
         Orient(CellSegmentToFrame(s, grid.geometry()), grid, options.thresholds));
   return features;

@@ -25,8 +25,20 @@ struct LineFeatureOptions {
   // edge. Above the occupied threshold.
   float strong_log_odds = 3.0f;
   core::OccupancyThresholds thresholds;  // which cells are occupied and free
-  HoughOptions hough;
-  ConsolidationOptions consolidation;
+  // Lengths in the building, metres, the same at any resolution (used on a grid as cells,
+  // HoughOptionsFor and ConsolidationOptionsFor):
+  double min_length_m = 0.5;       // shorter segments are no line (Hough and consolidated)
+  double min_vote_length_m = 0.6;  // a Hough line needs this much of edge pixels on it
+  double max_hough_gap_m = 0.2;    // edge pixels this far apart still make one Hough segment
+  double max_join_gap_m = 0.3;     // segments of one edge this far apart join; a door does not
+  // Of the grid's quantisation, cells, the same at any resolution: an edge of strong cells is
+  // about two cells thick, a static surface row one. End points this close to a group's line
+  // join it, and pixels this close take part in its refit.
+  double max_join_distance_cells = 2.0;
+  double fit_band_cells = 1.5;
+  double theta_step_rad = M_PI / 360;            // the Hough accumulator's angle resolution
+  double max_angle_diff_rad = 4.0 * M_PI / 180;  // segments of one edge differ by at most this
+  int min_fit_pixels = 6;                        // fewer: a group keeps its Hough geometry
   core::Status Validate() const;
 };
 
@@ -36,10 +48,17 @@ struct LineFeatureOptions {
 inline LineFeatureOptions StaticLineOptions() {
   LineFeatureOptions options;
   options.source = EdgeSource::kSurfaceCells;
-  options.consolidation.max_normal_distance_cells = 1.0;
-  options.consolidation.fit_band_cells = 0.8;
+  options.max_join_distance_cells = 1.0;
+  options.fit_band_cells = 0.8;
   return options;
 }
+
+// The picture-level options for a grid of `resolution_m`: the lengths in whole pixels (at
+// least 3 votes, at least 2 cells long, gaps of at least one cell), the accumulator's
+// distance resolution one cell. At 0.05 m: 12 votes, 10 cells long, gaps of 4 and 6 cells.
+HoughOptions HoughOptionsFor(const LineFeatureOptions& options, double resolution_m);
+ConsolidationOptions ConsolidationOptionsFor(const LineFeatureOptions& options,
+                                             double resolution_m);
 
 struct LineFeatures {
   std::vector<LineSegment> lines;  // metres, in the grid geometry's parent frame, longest first

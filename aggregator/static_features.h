@@ -15,7 +15,9 @@ namespace fleetmap::aggregator {
 struct StaticFeatureOptions {
   LineFeatureOptions lines = StaticLineOptions();
   DominantDirectionOptions directions;
-  double field_sigma_cells = 1.0;  // width of the surface field's Gaussian, cells, > 0
+  // Width of the surface field's Gaussian, cells, > 0: of the grid's quantisation (a surface
+  // cell's position is known to a cell), as is the shift below.
+  double field_sigma_cells = 1.0;
   // Where a temporary map's hits on a face centre, relative to the static surface row's
   // centre, towards free space, cells [0, 0.5]. Hits straddle the face, and the temporary
   // grid's phase against the face decides whether their cells centre on the face (+0.5) or

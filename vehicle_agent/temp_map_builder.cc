@@ -1,16 +1,17 @@
 #include "vehicle_agent/temp_map_builder.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fleetmap::vehicle_agent {
 
 core::Status TempMapBuilderOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(mapper.Validate());
   if (!(max_duration_s > 0 && edge_margin_m >= 0 && edge_margin_m < mapper.map.size_m / 2 &&
-        crop_margin_cells >= 0)) {
+        crop_margin_m >= 0)) {
     return core::InvalidArgument(
         "temp map builder: max_duration_s > 0, 0 <= edge_margin_m < "
-        "half the map size, crop_margin_cells >= 0");
+        "half the map size, crop_margin_m >= 0");
   }
   return core::OkStatus();
 }
@@ -49,7 +50,9 @@ std::optional<core::TempMap> TempMapBuilder::Close(double stamp_s) {
     pending_.end_s = std::max(pending_.end_s, stamp_s);
     core::OccupancyGrid evidence = mapper_->map().finest();
     mapper_->map().moving().Report(evidence);  // what moved is no obstacle (moving_cells.h)
-    pending_.grid = CropToObserved(evidence, options_.crop_margin_cells);
+    const int margin_cells = static_cast<int>(
+        std::ceil(options_.crop_margin_m / evidence.geometry().resolution_m() - 1e-9));
+    pending_.grid = CropToObserved(evidence, margin_cells);
     out = std::move(pending_);
   }
   mapper_.reset();

@@ -31,7 +31,7 @@ struct TempMapBuilderOptions {
   // map); shorter maps also bend less.
   double max_duration_s = 3.0;
   double edge_margin_m = 4.0;  // ... and so is one whose vehicle comes this close to its edge
-  int crop_margin_cells = 4;   // unknown border kept around the observed cells
+  double crop_margin_m = 0.2;  // unknown border kept around the observed cells (whole cells)
   core::Status Validate() const;
 };
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "aggregator/dominant_directions.h"
 #include "aggregator/hough_lines.h"
 #include "aggregator/line_consolidation.h"
@@ -81,6 +83,51 @@ TEST(LineFeaturesTest, StaticHallGivesOneOrientedLinePerFace) {
   }
   EXPECT_EQ(south_wall, 1);  // the wall is 3 cells thick, its face one line
   EXPECT_EQ(stub_faces, 2);  // a thin wall's two faces stay two lines
+}
+
+// Strong cells two cells thick along y = 1 m from x = 1 m, `length_m` long, in an unknown 3 m
+// square at `resolution_m`: a temporary map's view of one face.
+core::OccupancyGrid FaceAt(double resolution_m, double length_m) {
+  const int n = static_cast<int>(std::lround(3.0 / resolution_m));
+  core::OccupancyGrid grid{core::GridGeometry(resolution_m, n, n)};
+  const core::GridGeometry& g = grid.geometry();
+  for (double x = 1.0 + resolution_m / 2; x < 1.0 + length_m; x += resolution_m) {
+    grid.SetLogOdds(g.WorldToCell({x, 1.0 + resolution_m / 2}), 4.0f);
+    grid.SetLogOdds(g.WorldToCell({x, 1.0 - resolution_m / 2}), 4.0f);
+  }
+  return grid;
+}
+
+// Lengths are the building's: a face of 0.8 m is one line and one of 0.4 m is none, at 2.5, 5
+// and 10 cm alike (in cells, 10 of them, the 0.4 m face was a line at 2.5 cm and the 0.8 m
+// face none at 10 cm; at 5 cm a Hough segment across the two rows of cells made it two).
+TEST(LineFeaturesTest, TheSameFaceGivesTheSameLinesAtAnyResolution) {
+  for (const double r : {0.025, 0.05, 0.10}) {
+    auto long_face = ExtractLineFeatures(FaceAt(r, 0.8), LineFeatureOptions());
+    ASSERT_TRUE(long_face.ok()) << long_face.status().ToString();
+    ASSERT_EQ(long_face->lines.size(), 1u) << r;
+    EXPECT_NEAR(long_face->lines[0].length(), 0.8, 2 * r) << r;
+    EXPECT_NEAR(long_face->lines[0].midpoint().y(), 1.0, r) << r;
+    auto short_face = ExtractLineFeatures(FaceAt(r, 0.4), LineFeatureOptions());
+    ASSERT_TRUE(short_face.ok());
+    EXPECT_TRUE(short_face->lines.empty()) << r;
+  }
+}
+
+// At 0.05 m the lengths are the picture options the method was measured with.
+TEST(LineFeaturesTest, PictureOptionsAtFiveCentimetres) {
+  const HoughOptions h = HoughOptionsFor(LineFeatureOptions(), 0.05);
+  EXPECT_EQ(h.min_votes, 12);
+  EXPECT_DOUBLE_EQ(h.min_length_cells, 10.0);
+  EXPECT_DOUBLE_EQ(h.max_gap_cells, 4.0);
+  EXPECT_DOUBLE_EQ(h.rho_cells, 1.0);
+  const ConsolidationOptions c = ConsolidationOptionsFor(StaticLineOptions(), 0.05);
+  EXPECT_DOUBLE_EQ(c.max_gap_cells, 6.0);
+  EXPECT_DOUBLE_EQ(c.min_length_cells, 10.0);
+  EXPECT_DOUBLE_EQ(c.max_normal_distance_cells, 1.0);
+  EXPECT_DOUBLE_EQ(c.fit_band_cells, 0.8);
+  EXPECT_EQ(HoughOptionsFor(LineFeatureOptions(), 0.5).min_votes, 3);  // the floors
+  EXPECT_DOUBLE_EQ(ConsolidationOptionsFor(LineFeatureOptions(), 0.5).min_length_cells, 2.0);
 }
 
 TEST(DominantDirectionsTest, AxisAlignedAndTurnedHalls) {
