@@ -33,8 +33,8 @@ void Measure(const AlignmentResult& a, double resolution_m, AlignmentConfidence&
 void Judge(const AlignmentResult& a, const ConfidenceOptions& o, double resolution_m,
            AlignmentConfidence& c) {
   const double moved = std::hypot(a.dx_m, a.dy_m);
-  const double max_residual_cells =  // to a millionth of a cell: 0.075 m at 0.05 m are 1.5
-      std::max(1.0, std::round(o.max_residual_m / resolution_m * 1e6) / 1e6);
+  const double max_residual_cells =
+      std::max(1.0, core::MetresInCells(o.max_residual_m, resolution_m));
   auto reject = [&](RejectReason reason, std::string why) {
     c.reason = reason;
     c.explanation = std::move(why);

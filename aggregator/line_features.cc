@@ -19,22 +19,13 @@ core::Status LineFeatureOptions::Validate() const {
   return ConsolidationOptionsFor(*this, 0.05).Validate();
 }
 
-namespace {
-
-// Metres in cells, to a millionth of a cell: 0.3 m at 0.05 m are 6 cells, not 5.999...
-double Cells(double metres, double resolution_m) {
-  return std::round(metres / resolution_m * 1e6) / 1e6;
-}
-
-}  // namespace
-
 HoughOptions HoughOptionsFor(const LineFeatureOptions& o, double resolution_m) {
   HoughOptions h;
   h.rho_cells = 1.0;
   h.theta_step_rad = o.theta_step_rad;
   h.min_votes = std::max(3, static_cast<int>(std::lround(o.min_vote_length_m / resolution_m)));
-  h.min_length_cells = std::max(2.0, Cells(o.min_length_m, resolution_m));
-  h.max_gap_cells = std::max(1.0, Cells(o.max_hough_gap_m, resolution_m));
+  h.min_length_cells = std::max(2.0, core::MetresInCells(o.min_length_m, resolution_m));
+  h.max_gap_cells = std::max(1.0, core::MetresInCells(o.max_hough_gap_m, resolution_m));
   return h;
 }
 
@@ -42,9 +33,9 @@ ConsolidationOptions ConsolidationOptionsFor(const LineFeatureOptions& o, double
   ConsolidationOptions c;
   c.max_angle_diff_rad = o.max_angle_diff_rad;
   c.max_normal_distance_cells = o.max_join_distance_cells;
-  c.max_gap_cells = std::max(1.0, Cells(o.max_join_gap_m, resolution_m));
+  c.max_gap_cells = std::max(1.0, core::MetresInCells(o.max_join_gap_m, resolution_m));
   c.fit_band_cells = o.fit_band_cells;
-  c.min_length_cells = std::max(2.0, Cells(o.min_length_m, resolution_m));
+  c.min_length_cells = std::max(2.0, core::MetresInCells(o.min_length_m, resolution_m));
   c.min_fit_pixels = o.min_fit_pixels;
   return c;
 }

@@ -72,8 +72,6 @@ class Planner {
     return neighbours >= o_.min_occupied_neighbours;
   }
 
-  // Whether the candidate (x, y) was seen by a map confirm_min_gap_s to confirm_max_gap_s
-  // away in time from this one.
   // A candidate confirms if seen by a map confirm_min_gap_s to confirm_max_gap_s away in time
   // from this one, or if this map ends a watch of it that lasted confirm_min_gap_s.
   bool Confirms(int x, int y) const {
@@ -81,7 +79,7 @@ class Planner {
     const aggregator::Candidate& c = CandidateAt(x, y);
     return c.first.Apart(span_, o_.confirm_min_gap_s, o_.confirm_max_gap_s) ||
            (o_.confirm_by_watch && ContinuesWatch(c) &&
-            span_.middle_s() - c.watched_from_s >= o_.confirm_min_gap_s);
+            span_.middle_s() - c.first.end_s >= o_.confirm_min_gap_s);
   }
   const aggregator::Candidate& CandidateAt(int x, int y) const {
     return in_.candidates->at(static_cast<int64_t>(Global(x, y)));

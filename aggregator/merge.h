@@ -115,11 +115,11 @@ struct TimeSpan {
 };
 
 // A cell seen occupied where nothing was, not yet an obstacle.
+// Its watch runs from the end of the first map to last_seen_end_s.
 struct Candidate {
   TimeSpan first;              // the map that saw it first (or that renewed it)
-  double watched_from_s = 0;   // the end of the first map of its current watch
-  double last_seen_end_s = 0;  // the end of the last map of that watch
-  static Candidate SeenBy(const TimeSpan& span) { return {span, span.end_s, span.end_s}; }
+  double last_seen_end_s = 0;  // the end of the last map of its watch
+  static Candidate SeenBy(const TimeSpan& span) { return {span, span.end_s}; }
 };
 
 // What the merge reads of the current map.

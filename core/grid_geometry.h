@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -75,5 +76,11 @@ class GridGeometry {
   int height_ = 0;
   Pose2 origin_;
 };
+
+// A length in cells of `resolution_m`, to a millionth of a cell, so that options in metres give
+// the whole cells they mean (0.3 m at 0.05 m are 6 cells, not 5.999...).
+inline double MetresInCells(double metres, double resolution_m) {
+  return std::round(metres / resolution_m * 1e6) / 1e6;
+}
 
 }  // namespace fleetmap::core

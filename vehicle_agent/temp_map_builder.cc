@@ -51,7 +51,7 @@ std::optional<core::TempMap> TempMapBuilder::Close(double stamp_s) {
     core::OccupancyGrid evidence = mapper_->map().finest();
     mapper_->map().moving().Report(evidence);  // what moved is no obstacle (moving_cells.h)
     const int margin_cells = static_cast<int>(
-        std::ceil(options_.crop_margin_m / evidence.geometry().resolution_m() - 1e-9));
+        std::ceil(core::MetresInCells(options_.crop_margin_m, evidence.geometry().resolution_m())));
     pending_.grid = CropToObserved(evidence, margin_cells);
     out = std::move(pending_);
   }

@@ -99,11 +99,11 @@ TEST(CurrentMapStoreTest, AWatchedCandidateKeepsItsFirstSightingAndWhenLastSeen)
   EXPECT_EQ(store.Apply(Commit(1, {{500, CellChangeKind::kCandidateWatched}})).status().code(),
             core::StatusCode::kFailedPrecondition);  // no candidate there
   ASSERT_TRUE(store.Apply(Commit(1, {{500, CellChangeKind::kCandidate}})).ok());
-  EXPECT_EQ(store.candidates().at(500).watched_from_s, 2.0);  // the first map's end
+  EXPECT_EQ(store.candidates().at(500).first.end_s, 2.0);  // where its watch starts
   ASSERT_TRUE(store.Apply(Commit(2, {{500, CellChangeKind::kCandidateWatched}}, 2)).ok());
   const Candidate& c = store.candidates().at(500);
   EXPECT_EQ(c.first.start_s, 1.0);
-  EXPECT_EQ(c.watched_from_s, 2.0);
+  EXPECT_EQ(c.first.end_s, 2.0);
   EXPECT_EQ(c.last_seen_end_s, 4.0);
   EXPECT_EQ(store.current_map().cells(), Map().cells());
 }
