@@ -134,14 +134,16 @@ class Planner {
   }
 
   // Cells this map sees occupied that connect (through other such cells) to an obstacle
-  // of the current map belong to it: another face of the same pallet, seen once. They are
-  // added too. (Only obstacles confirmed before: a person who happened to stand at the same
-  // place at both sightings does not drag the rest of what this map saw of him in.)
+  // of the current map that this map sees as well belong to it: another face of the same
+  // pallet, seen once. They are added too. (Only obstacles confirmed before: a person who
+  // happened to stand at the same place at both sightings does not drag the rest of what
+  // this map saw of him in. Only obstacles seen now: a forklift that stops where a person
+  // was wrongly mapped is no face of it.)
   void GrowConfirmed(std::vector<std::optional<CellChangeKind>>& decided) const {
     std::vector<std::pair<int, int>> stack;
     for (int y = w_.y0; y < w_.y0 + w_.height; ++y)
       for (int x = w_.x0; x < w_.x0 + w_.width; ++x)
-        if (Semi(x, y)) stack.emplace_back(x, y);
+        if (Semi(x, y) && Strong(x, y)) stack.emplace_back(x, y);
     while (!stack.empty()) {
       const auto [x, y] = stack.back();
       stack.pop_back();

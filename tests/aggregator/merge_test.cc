@@ -135,6 +135,24 @@ TEST_F(MergeTest, AWatchBrokenByAPauseConfirmsNothing) {
 
 // A person walking back and forth is at the same place again later, and no map need have seen
 // the place free in between: a sighting more than confirm_max_gap_s later starts afresh.
+// Cells seen next to an obstacle of the map are another face of it only when this map sees
+// the obstacle too: a forklift that stops where a person was wrongly mapped is no face of it.
+TEST_F(MergeTest, ANeighbourIsAnotherFaceOnlyWhileTheObstacleIsSeen) {
+  PlacedEvidence row = Evidence();
+  Set(row, 8, 8, 10, 8, kHit);
+  const double gap = options_.confirm_min_gap_s;
+  Commit(Plan(row, {0, 3}), {0, 3});
+  Commit(Plan(row, {3 + gap, 6 + gap}), {3 + gap, 6 + gap});
+  ASSERT_EQ(Semi(), 3);
+  PlacedEvidence beside = Evidence();  // the obstacle unobserved, something next to it
+  Set(beside, 11, 8, 13, 9, kHit);
+  const MergePlan alone = Plan(beside, {6 + gap, 9 + gap});
+  EXPECT_EQ(alone.added, 0);
+  EXPECT_EQ(alone.candidates, 6);
+  Set(beside, 8, 8, 10, 8, kHit);  // the same, with the obstacle seen as well
+  EXPECT_EQ(Plan(beside, {6 + gap, 9 + gap}).added, 6);
+}
+
 TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
   options_.confirm_min_gap_s = 2.0;
   options_.confirm_max_gap_s = 20.0;

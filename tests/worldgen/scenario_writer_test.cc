@@ -3,6 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 #include "core/map_io.h"
 #include "tests/support/data_dir.h"
 #include "tools/sim/world.h"
@@ -73,6 +77,48 @@ TEST(ScenarioWriterTest, RoutesKeepTheirClearanceAndEveryChangeIsPassedAfterward
   EXPECT_EQ(s->actors[2].kind, "forklift");     // a warehouse has room for one
   EXPECT_GT(s->actors[2].motion.dwell_s, 0.0);  // it stops
   EXPECT_GT(s->actors[1].motion.dwell_s, 0.0);  // a person who stands a while
+}
+
+// The longest time, seconds, in which an actor's position stays within 1 mm.
+double LongestStandStill(const sim::World& world, size_t actor, double duration_s) {
+  constexpr double kStep_s = 0.05;
+  double longest = 0.0, since = 0.0;
+  Eigen::Vector2d last = world.ActorPositionAt(actor, 0.0);
+  for (double t = kStep_s; t <= duration_s; t += kStep_s) {
+    const Eigen::Vector2d p = world.ActorPositionAt(actor, t);
+    if ((p - last).norm() > 1e-3) since = t;
+    longest = std::max(longest, t - since);
+    last = p;
+  }
+  return longest;
+}
+
+// People and forklifts are under way when the scenario starts: none waits at its first point
+// (a forklift that stood there for half a minute would be a parked vehicle, which belongs in
+// the map), and none stands longer than its dwell plus a turn at the end of its path. The
+// start in the past survives writing and reading the scenario.
+TEST(ScenarioWriterTest, ActorsAreUnderWayFromTheStartAndStandOnlyForTheirDwell) {
+  const core::OccupancyGrid map = Warehouse(4);
+  for (uint64_t seed : {9, 10, 11}) {
+    ScenarioOptions o;
+    o.seed = seed;
+    auto written = WriteScenarioFor(map, "warehouse.yaml", o);
+    ASSERT_TRUE(written.ok()) << written.status().ToString();
+    auto reread = sim::ParseScenario(sim::ScenarioToYaml(written->scenario, "warehouse.yaml"), "w");
+    ASSERT_TRUE(reread.ok()) << reread.status().ToString();
+    auto world = sim::World::Create(*reread, map);
+    ASSERT_TRUE(world.ok()) << world.status().ToString();
+    ASSERT_EQ(reread->actors.size(), written->scenario.actors.size());
+    for (size_t a = 0; a < reread->actors.size(); ++a) {
+      const sim::DynamicActor& actor = reread->actors[a];
+      SCOPED_TRACE(actor.id + " of seed " + std::to_string(seed));
+      EXPECT_LE(actor.motion.start_s, 0.0);
+      EXPECT_NEAR(actor.motion.start_s, written->scenario.actors[a].motion.start_s, 1e-3);
+      const double turn_s = M_PI / actor.motion.angular_speed_radps;
+      EXPECT_LE(LongestStandStill(*world, a, reread->duration_s),
+                actor.motion.dwell_s + turn_s + 0.2);
+    }
+  }
 }
 
 TEST(ScenarioWriterTest, TheSameSeedWritesTheSameScenario) {

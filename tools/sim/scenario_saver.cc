@@ -27,7 +27,7 @@ void Motion(YAML::Emitter& e, const RouteOptions& m) {
   e << YAML::Key << "speed_mps" << YAML::Value << m.speed_mps;
   e << YAML::Key << "angular_speed_radps" << YAML::Value << m.angular_speed_radps;
   e << YAML::Key << "loop" << YAML::Value << m.loop;
-  if (m.start_s > 0) e << YAML::Key << "start_s" << YAML::Value << Mm(m.start_s);
+  if (m.start_s != 0) e << YAML::Key << "start_s" << YAML::Value << Mm(m.start_s);
   if (m.dwell_s > 0) e << YAML::Key << "dwell_s" << YAML::Value << Mm(m.dwell_s);
 }
 

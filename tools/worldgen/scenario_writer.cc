@@ -247,12 +247,18 @@ class Writer {
       a.motion.speed_mps = rng_.Uniform(0.8, 1.4);
       a.motion.angular_speed_radps = 2.0;
       a.motion.loop = true;
-      a.motion.start_s = rng_.Uniform(0.0, 0.3 * o_.duration_s);
+      a.motion.start_s = UnderWaySince(0.3 * o_.duration_s);
       if (stands) a.motion.dwell_s = rng_.Uniform(2.0, 5.0);
       return a;
     }
     return core::FailedPrecondition("no room for a person crossing a route");
   }
+
+  // A start in the past (negative, up to `max_s` ago): the actor is somewhere along its loop
+  // when the scenario starts, so that actors do not move in step, and none stands still longer
+  // than its dwell. One that waited tens of seconds at its first point would be a parked
+  // vehicle, which the map rightly adds.
+  double UnderWaySince(double max_s) { return -rng_.Uniform(0.0, max_s); }
 
   // Along a route, stopping for a few seconds at each end.
   // A forklift where one fits, else a cart (narrow corridors: offices, hospitals).
@@ -278,7 +284,7 @@ class Writer {
       a.motion.speed_mps = 1.5;
       a.motion.angular_speed_radps = 1.0;
       a.motion.loop = true;
-      a.motion.start_s = rng_.Uniform(0.0, 0.2 * o_.duration_s);
+      a.motion.start_s = UnderWaySince(0.2 * o_.duration_s);
       a.motion.dwell_s = rng_.Uniform(3.0, 8.0);
       return a;
     }
