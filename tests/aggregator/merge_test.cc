@@ -133,8 +133,6 @@ TEST_F(MergeTest, AWatchBrokenByAPauseConfirmsNothing) {
   EXPECT_EQ(Plan(e, {12, 15}).added, 0);  // the sighting after the pause did not extend it
 }
 
-// A person walking back and forth is at the same place again later, and no map need have seen
-// the place free in between: a sighting more than confirm_max_gap_s later starts afresh.
 // Cells seen next to an obstacle of the map are another face of it only when this map sees
 // the obstacle too: a forklift that stops where a person was wrongly mapped is no face of it.
 TEST_F(MergeTest, ANeighbourIsAnotherFaceOnlyWhileTheObstacleIsSeen) {
@@ -153,6 +151,8 @@ TEST_F(MergeTest, ANeighbourIsAnotherFaceOnlyWhileTheObstacleIsSeen) {
   EXPECT_EQ(Plan(beside, {6 + gap, 9 + gap}).added, 6);
 }
 
+// A person walking back and forth is at the same place again later, and no map need have seen
+// the place free in between: a sighting more than confirm_max_gap_s later starts afresh.
 TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
   options_.confirm_min_gap_s = 2.0;
   options_.confirm_max_gap_s = 20.0;
