@@ -192,6 +192,22 @@ core::Result<MergeReport> Aggregator::Submit(const core::TempMap& map, double no
   return Commit(map, Assess(map), now_s);
 }
 
+core::Result<int> Aggregator::DropCandidatesSeenFree(const std::string& vehicle_id,
+                                                     const SeenFreeReport& report, double now_s) {
+  std::vector<CellChange> drops = PlanCandidateDrops(report, store_.candidates());
+  if (drops.empty()) return 0;
+  const int dropped = static_cast<int>(drops.size());
+  MergeCommit commit{
+      store_.version() + 1,
+      {vehicle_id, kSeenFreeSequence, report.first_pass_s, report.last_pass_s, now_s},
+      core::Pose2(),
+      std::move(drops)};
+  FLEETMAP_RETURN_IF_ERROR(store_.Check(commit));
+  if (persistence_) FLEETMAP_RETURN_IF_ERROR(persistence_->Record(commit));
+  FLEETMAP_RETURN_IF_ERROR(store_.Apply(std::move(commit)).status());
+  return dropped;
+}
+
 core::Status Aggregator::WriteSnapshot() {
   if (!persistence_) return core::FailedPrecondition("the aggregator has no persistence folder");
   return persistence_->Snapshot(store_);

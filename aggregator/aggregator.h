@@ -15,6 +15,7 @@
 #include <string>
 
 #include "aggregator/alignment_confidence.h"
+#include "aggregator/candidates_seen_free.h"
 #include "aggregator/current_map_store.h"
 #include "aggregator/map_persistence.h"
 #include "aggregator/merge.h"
@@ -102,6 +103,12 @@ class Aggregator {
                                    double now_s);
   // Assess, then Commit. `now_s` is recorded as the merge time (time is passed in).
   core::Result<MergeReport> Submit(const core::TempMap& map, double now_s);
+
+  // Drops the candidates `vehicle_id` saw empty (PlanCandidateDrops), journaled as one commit
+  // of a new version; nothing (no version) when the report justifies no drop. Returns how
+  // many were dropped.
+  core::Result<int> DropCandidatesSeenFree(const std::string& vehicle_id,
+                                           const SeenFreeReport& report, double now_s);
 
   // Writes a snapshot now (persistence only; FailedPrecondition without).
   core::Status WriteSnapshot();

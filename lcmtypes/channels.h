@@ -20,12 +20,19 @@ constexpr char kDivergencePrefix[] = "DIVERGENCE_";
 constexpr char kTempMapPrefix[] = "TEMPMAP_";
 constexpr char kTempMapChannelRegex[] = "TEMPMAP_.*";
 constexpr char kMapRequestChannel[] = "MAP_REQUEST";
+// The fleet map's candidates a vehicle's scans passed through, none ending there.
+constexpr char kCandidatesFreePrefix[] = "CANDIDATES_FREE_";
+constexpr char kCandidatesFreeChannelRegex[] = "CANDIDATES_FREE_.*";
 // Downlink: what the aggregator publishes. TEMPMAP_ACK shares the prefix of the vehicles'
 // TEMPMAP_<id> (and so matches kTempMapChannelRegex): IsTempMapTileChannel tells them apart.
 constexpr char kTempMapAckChannel[] = "TEMPMAP_ACK";
 constexpr char kMapDeltaChannel[] = "MAP_DELTA";
 constexpr char kMapKeyframeChannel[] = "MAP_KEYFRAME";
 constexpr char kMergeReportChannel[] = "MERGE_REPORT";
+// The current map's candidates (cells seen occupied once), for the vehicles to watch.
+constexpr char kMapCandidatesChannel[] = "MAP_CANDIDATES";
+// Cells per MAP_CANDIDATES or CANDIDATES_FREE_<id> message: 1.2 KB, one UDP datagram.
+constexpr int kMaxCandidateCellsPerMessage = 300;
 // Both: every process's heartbeat, STATUS_<process>: STATUS_agent_<id>, STATUS_aggregator.
 constexpr char kStatusPrefix[] = "STATUS_";
 constexpr char kAgentStatusPrefix[] = "STATUS_agent_";
@@ -41,6 +48,9 @@ inline std::string DivergenceChannel(const std::string& vehicle) {
   return kDivergencePrefix + vehicle;
 }
 inline std::string TempMapChannel(const std::string& vehicle) { return kTempMapPrefix + vehicle; }
+inline std::string CandidatesFreeChannel(const std::string& vehicle) {
+  return kCandidatesFreePrefix + vehicle;
+}
 inline std::string StatusChannel(const std::string& process) { return kStatusPrefix + process; }
 
 inline bool HasPrefix(const std::string& channel, const char* prefix) {

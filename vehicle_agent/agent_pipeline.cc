@@ -1,5 +1,8 @@
 #include "vehicle_agent/agent_pipeline.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "vehicle_agent/input_guard.h"
 
 namespace fleetmap::vehicle_agent {
@@ -12,7 +15,10 @@ core::Status AgentPipelineOptions::Validate() const {
   if (!(max_scan_gap_s > 0)) return core::InvalidArgument("agent: max_scan_gap_s must be > 0");
   FLEETMAP_RETURN_IF_ERROR(localizer.Validate().WithContext("agent.localizer"));
   FLEETMAP_RETURN_IF_ERROR(divergence.Validate().WithContext("agent.divergence"));
-  return builder.Validate().WithContext("agent.builder");
+  FLEETMAP_RETURN_IF_ERROR(builder.Validate().WithContext("agent.builder"));
+  if (!(candidate_watch_max_sigma_m > 0))
+    return core::InvalidArgument("agent: candidate_watch_max_sigma_m must be > 0");
+  return candidate_watch.Validate().WithContext("agent.candidate_watch");
 }
 
 AgentPipeline::AgentPipeline(const AgentPipelineOptions& options)
@@ -25,6 +31,10 @@ AgentPipeline::AgentPipeline(const AgentPipelineOptions& options)
 core::Status AgentPipeline::SetMap(const core::OccupancyGrid& map, int32_t version) {
   // Temporary maps are built at the current map's resolution, so that they merge cell for cell.
   options_.builder.mapper.map.resolution_m = map.geometry().resolution_m();
+  if (!watch_ || !(watch_->geometry() == map.geometry())) {
+    watch_.emplace(map.geometry(), options_.candidate_watch);
+    watch_->SetCandidates(candidates_);
+  }
   return localizer_.SetMap(map, version);
 }
 
@@ -40,6 +50,22 @@ void AgentPipeline::AddOdometry(const core::OdometrySample& odom) {
   localizer_.AddOdometry(odom);  // every increment, and bad samples counted there
   if (!odom.Validate().ok()) return;
   odom_ = odom;
+}
+
+void AgentPipeline::SetCandidates(const std::vector<int64_t>& cells) {
+  candidates_ = cells;  // for a watch made later (the first map may come after them)
+  if (watch_) watch_->SetCandidates(cells);
+}
+
+CandidatesSeenFree AgentPipeline::TakeSeenFree() {
+  return watch_ ? watch_->TakeSeenFree() : CandidatesSeenFree{};
+}
+
+void AgentPipeline::WatchCandidates(const core::LaserScan& scan, const core::PoseEstimate& pose) {
+  if (!watch_ || watch_->num_candidates() == 0) return;
+  const double sigma_m = std::sqrt(std::max(pose.covariance(0, 0), pose.covariance(1, 1)));
+  if (!(sigma_m <= options_.candidate_watch_max_sigma_m)) return;
+  watch_->Observe(scan, pose.pose_in_map * options_.scanner_in_base);
 }
 
 void AgentPipeline::StartMap(double stamp_s, const core::Pose2& anchor) {
@@ -89,6 +115,7 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
     step.closed_map = builder_.Close(scan.stamp_s);
   if (step.closed_map) ++counters_.temp_maps_closed;
   step.building = builder_.building();
+  if (valid) WatchCandidates(scan, step.pose);
   return step;
 }
 

@@ -7,7 +7,9 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "vehicle_agent/candidate_watch.h"
 #include "vehicle_agent/divergence.h"
 #include "vehicle_agent/localizer.h"
 #include "vehicle_agent/temp_map_builder.h"
@@ -29,6 +31,12 @@ struct AgentPipelineOptions {
   // whole gap blind (1 m at 1 m/s), and one scan put in the wrong place spoils the map.
   // Seconds, > 0; scans come every 0.02-0.1 s.
   double max_scan_gap_s = 1.0;
+  // Watching the fleet map's candidates (SetCandidates): what counts as passing through and
+  // ending at one, and how well localized the vehicle must be for its beams to be trusted
+  // with single cells: the larger standard deviation of its position, metres (a cell is 0.02
+  // to 0.10 m; beyond this a beam may be judged against the wrong cell).
+  CandidateWatchOptions candidate_watch;
+  double candidate_watch_max_sigma_m = 0.05;
   core::Status Validate() const;
 };
 
@@ -62,6 +70,10 @@ class AgentPipeline {
   // uses the most recent sample.
   void AddOdometry(const core::OdometrySample& odom);
   AgentStep AddScan(const core::LaserScan& scan);
+  // The fleet map's candidates, cell indices of the current map (replacing the last set).
+  void SetCandidates(const std::vector<int64_t>& cells);
+  // The candidates this vehicle's scans saw free since the last call (CandidateWatch).
+  CandidatesSeenFree TakeSeenFree();
   // Closes a temporary map being built (at shutdown).
   std::optional<core::TempMap> Flush(double stamp_s);
 
@@ -71,6 +83,7 @@ class AgentPipeline {
 
  private:
   void StartMap(double stamp_s, const core::Pose2& anchor);
+  void WatchCandidates(const core::LaserScan& scan, const core::PoseEstimate& pose);
 
   AgentPipelineOptions options_;
   Localizer localizer_;
@@ -81,6 +94,8 @@ class AgentPipeline {
   std::optional<double> last_scan_stamp_s_;  // of the last valid scan
   int32_t next_sequence_ = 1;
   AgentCounters counters_;
+  std::optional<CandidateWatch> watch_;  // from the first map on
+  std::vector<int64_t> candidates_;      // the last set given
 };
 
 }  // namespace fleetmap::vehicle_agent

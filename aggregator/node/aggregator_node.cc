@@ -4,6 +4,7 @@
 #include <chrono>
 #include <set>
 
+#include "aggregator/node/candidate_messages.h"
 #include "aggregator/node/map_hash.h"
 #include "aggregator/node/messages.h"
 #include "fleetmap/map_request_t.hpp"
@@ -116,14 +117,18 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
     ++counters_.ignored_messages;  // matches TEMPMAP_.*: our own, when both links share a group
     return;
   }
-  if (!tile && channel != lcmtypes::kMapRequestChannel) {
+  const bool seen_free = lcmtypes::HasPrefix(channel, lcmtypes::kCandidatesFreePrefix);
+  if (!tile && !seen_free && channel != lcmtypes::kMapRequestChannel) {
     Refuse(
         "unknown channel", counters_.unknown_channel,
         "message on channel '" + channel.substr(0, 80) + "', which the aggregator does not read");
     return;
   }
-  // TEMPMAP_<id> belongs to vehicle <id>; any member of the fleet may ask for maps.
-  const std::string owner = lcmtypes::ChannelSuffix(channel, lcmtypes::kTempMapPrefix);
+  // TEMPMAP_<id> and CANDIDATES_FREE_<id> belong to vehicle <id>; any member of the fleet may
+  // ask for maps.
+  const std::string owner = seen_free
+                                ? lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesFreePrefix)
+                                : lcmtypes::ChannelSuffix(channel, lcmtypes::kTempMapPrefix);
   auth::Opened opened;
   const auth::Verdict verdict = verifier_.Open(channel, data, size, owner, &opened);
   if (verdict != auth::Verdict::kAccepted) {
@@ -133,6 +138,8 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
   }
   if (tile) {
     OnTile(channel, opened.data, opened.size, now_s);
+  } else if (seen_free) {
+    OnSeenFree(channel, opened.data, opened.size, now_s);
   } else {
     OnRequest(opened.data, opened.size);
   }
@@ -300,7 +307,46 @@ void AggregatorNode::Complete(const MapKey& key, const core::TempMap& map, int32
        ReportMessage(*report, map.anchor_in_map, options_.max_report_matches,
                      lcmtypes::ToUtime(map_s)));
   if (publisher_) ++counters_.merge_reports_sent;
-  if (report->accepted) SendDelta(report->delta, now_s);
+  if (report->accepted) {
+    SendDelta(report->delta, now_s);
+    SendCandidates(now_s);
+  }
+}
+
+void AggregatorNode::OnSeenFree(const std::string& channel, const void* data, int size,
+                                double now_s) {
+  auto msg = lcmtypes::Decode<fleetmap::candidates_free_t>(data, size);
+  if (!msg.ok()) {
+    Refuse("CANDIDATES_FREE: malformed", counters_.malformed_messages,
+           channel + ": not a candidates_free_t: " + msg.status().ToString());
+    return;
+  }
+  const std::string vehicle = lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesFreePrefix);
+  if (msg->vehicle_id != vehicle) {
+    Refuse("CANDIDATES_FREE: wrong vehicle id", counters_.wrong_vehicle_id,
+           channel + ": a report of vehicle '" + msg->vehicle_id.substr(0, kMaxVehicleIdBytes) +
+               "' refused: a vehicle reports on its own channel");
+    return;
+  }
+  auto report = SeenFreeFromMessage(*msg, aggregator_.store().current_map().geometry().num_cells());
+  if (!report.ok()) {
+    Refuse("CANDIDATES_FREE: invalid", counters_.bad_seen_free,
+           channel + ": report refused: " + report.status().ToString());
+    return;
+  }
+  ++counters_.seen_free_reports;
+  auto dropped = aggregator_.DropCandidatesSeenFree(vehicle, *report, now_s);
+  if (!dropped.ok()) {
+    ++counters_.persist_errors;
+    log_.Warning("candidates " + vehicle.substr(0, kMaxVehicleIdBytes) +
+                 " saw free not dropped: " + dropped.status().ToString());
+    return;
+  }
+  if (*dropped == 0) return;
+  counters_.candidates_dropped += *dropped;
+  const CurrentMapStore& store = aggregator_.store();
+  if (auto delta = store.Delta(store.version() - 1); delta.ok()) SendDelta(*delta, now_s);
+  SendCandidates(now_s);
 }
 
 void AggregatorNode::OnRequest(const void* data, int size) {
@@ -345,6 +391,7 @@ void AggregatorNode::Tick(double now_s) {
   DropStale(now_s);
   if (options_.keyframe_period_s > 0 && now_s >= next_keyframe_s_) {
     SendKeyframe(nullptr, now_s);
+    SendCandidates(now_s);  // for vehicles that joined since they last changed
     requests_.WholeKeyframeSent(now_s);
     next_keyframe_s_ = now_s + options_.keyframe_period_s;
   }
@@ -444,6 +491,15 @@ void AggregatorNode::SendDelta(const MapDelta& delta, double now_s) {
   const auto messages = DeltaMessages(delta, lcmtypes::ToUtime(now_s));
   for (const auto& m : messages) Send(Link::kDownlink, lcmtypes::kMapDeltaChannel, m);
   counters_.delta_tiles_sent += static_cast<int64_t>(messages.size());
+}
+
+void AggregatorNode::SendCandidates(double now_s) {
+  if (!publisher_) return;
+  const CurrentMapStore& store = aggregator_.store();
+  for (const auto& m :
+       CandidateMessages(store.candidates(), store.version(), lcmtypes::ToUtime(now_s)))
+    Send(Link::kDownlink, lcmtypes::kMapCandidatesChannel, m);
+  ++counters_.candidate_sets_sent;
 }
 
 void AggregatorNode::SendStatus(double now_s) {

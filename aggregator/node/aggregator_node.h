@@ -14,8 +14,11 @@
 //       answered DUPLICATE and never merged twice, also after a restart.
 //   MAP_REQUEST  the deltas since the vehicle's version when all are retained, otherwise a
 //       keyframe (whole, or the tiles listed), coalesced (request_queue.h).
+//   CANDIDATES_FREE_<vehicle>  candidates the vehicle's scans saw empty: dropped
+//       (Aggregator::DropCandidatesSeenFree, a version of its own and its MAP_DELTA).
 // Downlink, what it sends: TEMPMAP_ACK, MERGE_REPORT, MAP_DELTA, MAP_KEYFRAME (also every
-// keyframe_period_s), STATUS_<process_name> every status_period_s.
+// keyframe_period_s), MAP_CANDIDATES (after each change of the candidates, and with each
+// periodic keyframe), STATUS_<process_name> every status_period_s.
 // Bad input of any kind is counted by cause (node_counters.h), logged once per cause, and
 // changes nothing.
 #pragma once
@@ -95,6 +98,9 @@ class AggregatorNode {
   void Complete(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
                 double now_s);
   void OnRequest(const void* data, int size);
+  // A vehicle's CANDIDATES_FREE_<id>: the candidates it saw empty are dropped (a new version),
+  // and the new set goes out.
+  void OnSeenFree(const std::string& channel, const void* data, int size, double now_s);
   void Refuse(const std::string& cause, int64_t& counter, const std::string& line);
   bool Throttled(const std::string& vehicle, double now_s);
   int PendingMaps(const std::string& vehicle) const;
@@ -105,6 +111,7 @@ class AggregatorNode {
   void SendRequested(double now_s);
   void SendKeyframe(const std::vector<int32_t>* only, double now_s);
   void SendDelta(const MapDelta& delta, double now_s);
+  void SendCandidates(double now_s);
   void SendStatus(double now_s);
   void DropStale(double now_s);
   template <typename T>

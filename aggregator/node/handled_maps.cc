@@ -1,10 +1,13 @@
 #include "aggregator/node/handled_maps.h"
 
+#include "aggregator/candidates_seen_free.h"
+
 namespace fleetmap::aggregator::node {
 
 void HandledMaps::LoadMerged(const ProvenanceLog& history) {
   for (const MergeCommit& c : history.commits())
-    merged_[{c.source.vehicle_id, c.source.tempmap_sequence}] = c.version;
+    if (c.source.tempmap_sequence != kSeenFreeSequence)  // drops a vehicle reported, no map
+      merged_[{c.source.vehicle_id, c.source.tempmap_sequence}] = c.version;
 }
 
 void HandledMaps::Merged(const MapKey& key, uint64_t version) { merged_[key] = version; }

@@ -32,6 +32,7 @@ struct Cursor {
 
 bool IsUplinkChannel(const std::string& channel) {
   if (channel == lcmtypes::kMapRequestChannel) return true;
+  if (lcmtypes::HasPrefix(channel, lcmtypes::kCandidatesFreePrefix)) return true;
   return lcmtypes::IsTempMapTileChannel(channel);
 }
 

@@ -37,7 +37,11 @@ NamedCounters Named(const NodeCounters& c) {
           {"throttled_tiles", c.throttled_tiles},
           {"throttled_merges", c.throttled_merges},
           {"vehicle_maps_full", c.vehicle_maps_full},
-          {"auth_refused", c.auth_refused}};
+          {"auth_refused", c.auth_refused},
+          {"seen_free_reports", c.seen_free_reports},
+          {"bad_seen_free", c.bad_seen_free},
+          {"candidates_dropped", c.candidates_dropped},
+          {"candidate_sets_sent", c.candidate_sets_sent}};
 }
 
 }  // namespace fleetmap::aggregator::node

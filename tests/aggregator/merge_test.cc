@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "aggregator/aggregator.h"
+#include "aggregator/candidates_seen_free.h"
 #include "aggregator/current_map_store.h"
 #include "tests/aggregator/test_hall.h"
 
@@ -149,6 +150,31 @@ TEST_F(MergeTest, ANeighbourIsAnotherFaceOnlyWhileTheObstacleIsSeen) {
   EXPECT_EQ(alone.candidates, 6);
   Set(beside, 8, 8, 10, 8, kHit);  // the same, with the obstacle seen as well
   EXPECT_EQ(Plan(beside, {6 + gap, 9 + gap}).added, 6);
+}
+
+// A person turning at the same place every 25 s: a vehicle passing in between saw the place
+// empty, so the next sighting starts a candidate afresh instead of confirming it. A report of
+// passes before the last sighting drops nothing.
+TEST_F(MergeTest, ACandidateAVehicleSawEmptyIsDroppedAndNotConfirmedLater) {
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  Commit(Plan(e, {0, 3}), {0, 3});
+  ASSERT_EQ(store_.candidates().size(), 9u);
+  const int64_t centre = 9 * 20 + 9;
+  EXPECT_TRUE(PlanCandidateDrops({{centre}, 2.0, 2.5}, store_.candidates()).empty());
+  SeenFreeReport report{{centre, 5 * 20 + 5}, 12.0, 12.5};  // and a cell that is no candidate
+  for (int y = 8; y <= 10; ++y)
+    for (int x = 8; x <= 10; ++x) report.cells.push_back(y * 20 + x);
+  const std::vector<CellChange> drops = PlanCandidateDrops(report, store_.candidates());
+  ASSERT_EQ(drops.size(), 9u);  // each cell once, only candidates, ascending
+  EXPECT_EQ(drops[0], (CellChange{8 * 20 + 8, CellChangeKind::kCandidateDropped}));
+  MergeCommit c{store_.version() + 1, {"v2", kSeenFreeSequence, 12.0, 12.5, 13.0}, {}, drops};
+  ASSERT_TRUE(store_.Apply(c).ok());
+  EXPECT_TRUE(store_.candidates().empty());
+  const double gap = options_.confirm_min_gap_s;
+  const MergePlan later = Plan(e, {3 + gap, 6 + gap});  // would have confirmed it
+  EXPECT_EQ(later.added, 0);
+  EXPECT_EQ(later.candidates, 9);
 }
 
 // A person walking back and forth is at the same place again later, and no map need have seen

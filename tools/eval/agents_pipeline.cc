@@ -69,6 +69,23 @@ class AgentsPipeline : public Pipeline {
       next_pose_s_[v] = t + options_.pose_period_s;
     }
     if (step.closed_map) Merge(v, *step.closed_map, t);
+    ReportSeenFree(v, t);
+  }
+
+  // What a vehicle's beams saw free goes to the aggregator at once (in-process, no link).
+  void ReportSeenFree(size_t v, double now_s) {
+    vehicle_agent::CandidatesSeenFree seen = agents_[v]->TakeSeenFree();
+    if (seen.cells.empty()) return;
+    auto dropped = aggregator_.DropCandidatesSeenFree(
+        world_.scenario().vehicles[v].id,
+        {std::move(seen.cells), seen.first_pass_s, seen.last_pass_s}, now_s);
+    if (dropped.ok() && *dropped > 0) ShareCandidates();
+  }
+
+  void ShareCandidates() {
+    std::vector<int64_t> cells;
+    for (const auto& entry : aggregator_.store().candidates()) cells.push_back(entry.first);
+    for (auto& agent : agents_) agent->SetCandidates(cells);
   }
 
   void Merge(size_t v, const core::TempMap& map, double now_s) {
@@ -107,6 +124,7 @@ class AgentsPipeline : public Pipeline {
     record.cells_removed = report->cells_removed;
     run_.merges.push_back(record);
     if (!report->accepted) return;
+    ShareCandidates();
     run_.RecordVersion(aggregator_.store().current_map());
     for (auto& agent : agents_) (void)agent->SetMap(aggregator_.store().current_map(), Version());
   }

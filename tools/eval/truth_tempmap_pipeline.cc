@@ -16,6 +16,8 @@ class TruthTempMapPipeline : public Pipeline {
         aggregator_(std::move(aggregator)),
         disagreement_(options.trigger),
         builders_(world.scenario().vehicles.size()),
+        watches_(world.scenario().vehicles.size(),
+                 vehicle_agent::CandidateWatch(world.geometry(), options.candidate_watch)),
         rng_(world.scenario().seed * 7717u + options.seed) {
     run_.pipeline = name();
     run_.RecordVersion(aggregator_.store().current_map());
@@ -64,6 +66,26 @@ class TruthTempMapPipeline : public Pipeline {
     if (b.building) Insert(e, changed, b);
     Record(e, d, b);
     if (b.building && ShouldClose(b, t)) Close(e.vehicle, t);
+    WatchCandidates(e);
+  }
+
+  // The vehicles watch the candidates as the agents do, from where they truly are.
+  void WatchCandidates(const sim::ScanEvent& e) {
+    vehicle_agent::CandidateWatch& watch = watches_[e.vehicle];
+    if (watch.num_candidates() == 0) return;
+    watch.Observe(e.scan, e.true_scanner_pose);
+    vehicle_agent::CandidatesSeenFree seen = watch.TakeSeenFree();
+    if (seen.cells.empty()) return;
+    auto dropped = aggregator_.DropCandidatesSeenFree(
+        VehicleId(e.vehicle), {std::move(seen.cells), seen.first_pass_s, seen.last_pass_s},
+        e.scan.stamp_s);
+    if (dropped.ok() && *dropped > 0) ShareCandidates();
+  }
+
+  void ShareCandidates() {
+    std::vector<int64_t> cells;
+    for (const auto& entry : aggregator_.store().candidates()) cells.push_back(entry.first);
+    for (vehicle_agent::CandidateWatch& watch : watches_) watch.SetCandidates(cells);
   }
 
   void Start(const sim::ScanEvent& e, const Disagreement& d, Builder& b) {
@@ -142,6 +164,7 @@ class TruthTempMapPipeline : public Pipeline {
     }
     run_.merges.push_back(m);
     if (m.accepted) {
+      ShareCandidates();
       run_.RecordVersion(aggregator_.store().current_map());
       disagreement_.SetMap(aggregator_.store().current_map(), aggregator_.store().semi_static());
     }
@@ -188,6 +211,7 @@ class TruthTempMapPipeline : public Pipeline {
   aggregator::Aggregator aggregator_;
   ScanDisagreement disagreement_;
   std::vector<Builder> builders_;
+  std::vector<vehicle_agent::CandidateWatch> watches_;
   std::mt19937 rng_;
   RunRecord run_;
   bool finishing_ = false;
@@ -206,6 +230,7 @@ core::Status TruthTempMapOptions::Validate() const {
   if (!(anchor_error_max_m >= 0 && anchor_error_max_rad >= 0))
     return core::InvalidArgument("anchor errors must be >= 0");
   if (!(divergence_period_s > 0)) return core::InvalidArgument("divergence_period_s must be > 0");
+  FLEETMAP_RETURN_IF_ERROR(candidate_watch.Validate());
   if (max_extensions < 0) return core::InvalidArgument("max_extensions must be >= 0");
   if (trigger.min_run_beams < 1 || trigger.pass_beam_step < 1 || trigger.clearance_cells < 0)
     return core::InvalidArgument("trigger: min_run_beams and pass_beam_step >= 1, clearance >= 0");

@@ -16,6 +16,7 @@
 #include "core/scan_inserter.h"
 #include "tools/eval/pipeline.h"
 #include "tools/eval/scan_disagreement.h"
+#include "vehicle_agent/candidate_watch.h"
 
 namespace fleetmap::eval {
 
@@ -40,6 +41,8 @@ struct TruthTempMapOptions {
   double anchor_error_max_rad = 3.0 * M_PI / 180;
   uint32_t seed = 0;                 // added to the scenario's seed for the anchor errors
   double divergence_period_s = 0.2;  // how often a DivergenceSample is recorded per vehicle
+  // The vehicles report the candidates their scans saw free, as agents do.
+  vehicle_agent::CandidateWatchOptions candidate_watch;
   core::Status Validate() const;
 };
 

@@ -18,6 +18,7 @@ NamedCounters CollectCounters(const AgentNodeCounters& c, const InputQueue& queu
       {"tiles_resent", o.tiles_resent},
       {"acks", c.acks},
       {"auth_refused", c.auth_refused},
+      {"seen_free_reports", c.seen_free_reports},
       {"maps_merged", c.maps_merged},
       {"maps_rejected", c.maps_rejected},
       {"maps_duplicate", c.maps_duplicate},

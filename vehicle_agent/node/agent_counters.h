@@ -29,7 +29,8 @@ struct AgentNodeCounters {
   int64_t maps_merged = 0, maps_rejected = 0, maps_duplicate = 0;
   int64_t map_swaps_failed = 0;  // the pipeline refused a map version
   int64_t publish_failures = 0;
-  int64_t auth_refused = 0;  // downlink messages the verifier refused (by cause: auth_*)
+  int64_t auth_refused = 0;       // downlink messages the verifier refused (by cause: auth_*)
+  int64_t seen_free_reports = 0;  // CANDIDATES_FREE_<id> messages sent
 };
 
 using NamedCounters = std::vector<std::pair<std::string, int64_t>>;

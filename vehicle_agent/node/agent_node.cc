@@ -1,10 +1,13 @@
 #include "vehicle_agent/node/agent_node.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
 
+#include "fleetmap/candidates_free_t.hpp"
+#include "fleetmap/map_candidates_t.hpp"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "lcmtypes/convert.h"
 #include "lcmtypes/transport_convert.h"
@@ -83,8 +86,8 @@ std::vector<Subscription> AgentNode::Subscriptions() const {
   if (options_.odometry_from_lcm) subs.push_back({Link::kSensor, lcmtypes::OdomChannel(id)});
   if (options_.use_external_pose)
     subs.push_back({Link::kSensor, lcmtypes::ExternalPoseChannel(id)});
-  for (const char* channel :
-       {lcmtypes::kTempMapAckChannel, lcmtypes::kMapDeltaChannel, lcmtypes::kMapKeyframeChannel})
+  for (const char* channel : {lcmtypes::kTempMapAckChannel, lcmtypes::kMapDeltaChannel,
+                              lcmtypes::kMapKeyframeChannel, lcmtypes::kMapCandidatesChannel})
     subs.push_back({Link::kDownlink, channel});
   subs.push_back({Link::kDownlink, kAggregatorStatus});
   return subs;
@@ -111,7 +114,8 @@ void AgentNode::OnMessage(Link link, const std::string& channel, const void* dat
   }
   if (link != Link::kDownlink) return;
   if (channel != lcmtypes::kTempMapAckChannel && channel != lcmtypes::kMapDeltaChannel &&
-      channel != lcmtypes::kMapKeyframeChannel && channel != kAggregatorStatus) {
+      channel != lcmtypes::kMapKeyframeChannel && channel != lcmtypes::kMapCandidatesChannel &&
+      channel != kAggregatorStatus) {
     return;
   }
   auth::Opened opened;
@@ -132,6 +136,8 @@ void AgentNode::OnMessage(Link link, const std::string& channel, const void* dat
     OnDelta(data, size);
   } else if (channel == lcmtypes::kMapKeyframeChannel) {
     OnKeyframe(data, size);
+  } else if (channel == lcmtypes::kMapCandidatesChannel) {
+    OnCandidates(data, size);
   } else if (channel == kAggregatorStatus) {
     OnAggregatorStatus(data, size, now_s);
   } else {
@@ -274,6 +280,14 @@ void AgentNode::OnAggregatorStatus(const void* data, int size, double now_s) {
   if (m && m->map_version >= 0) follower_.OnRemoteVersion(m->map_version, now_s);
 }
 
+void AgentNode::OnCandidates(const void* data, int size) {
+  auto m = Decode<fleetmap::map_candidates_t>(lcmtypes::kMapCandidatesChannel, data, size);
+  if (!m) return;
+  auto set = candidates_.Add(*m);
+  if (!set.ok()) return Malformed(lcmtypes::kMapCandidatesChannel, set.status());
+  if (*set) pipeline_.SetCandidates(**set);
+}
+
 // ---- processing -----------------------------------------------------------------------------
 
 void AgentNode::Tick(double now_s) {
@@ -281,6 +295,7 @@ void AgentNode::Tick(double now_s) {
   for (const SensorInput& input : queue_.TakeAll()) Process(input, now_s);
   SendMapRequest(now_s);
   SendTiles(now_s);
+  SendSeenFree(now_s);
   if (now_s >= next_status_s_) {
     SendStatus(now_s);
     // Not now_s + period: a late tick must not shift every later heartbeat.
@@ -431,6 +446,32 @@ void AgentNode::SendTiles(double now_s, bool all) {
   const std::string channel = lcmtypes::TempMapChannel(options_.pipeline.vehicle_id);
   for (const core::TempMapTile& tile : sends_.Take(now_s, all))
     Send(Link::kUplink, channel, lcmtypes::ToMessage(tile, Utime(now_s)));
+}
+
+// Collected for half a second: one message, not one per scan, while a vehicle passes a
+// handful of candidates.
+void AgentNode::SendSeenFree(double now_s) {
+  constexpr double kSeenFreePeriodS = 0.5;
+  if (now_s < next_seen_free_s_) return;
+  next_seen_free_s_ = now_s + kSeenFreePeriodS;
+  const CandidatesSeenFree seen = pipeline_.TakeSeenFree();
+  fleetmap::candidates_free_t m;
+  m.utime = Utime(now_s);
+  m.vehicle_id = options_.pipeline.vehicle_id;
+  m.map_version = applied_version_;
+  m.first_pass_utime = lcmtypes::ToUtime(seen.first_pass_s);  // scan time, as maps carry it
+  m.last_pass_utime = lcmtypes::ToUtime(seen.last_pass_s);
+  const std::string channel = lcmtypes::CandidatesFreeChannel(options_.pipeline.vehicle_id);
+  for (size_t begin = 0; begin < seen.cells.size();
+       begin += lcmtypes::kMaxCandidateCellsPerMessage) {
+    const size_t end =
+        std::min(seen.cells.size(), begin + size_t{lcmtypes::kMaxCandidateCellsPerMessage});
+    m.cells.assign(seen.cells.begin() + static_cast<std::ptrdiff_t>(begin),
+                   seen.cells.begin() + static_cast<std::ptrdiff_t>(end));
+    m.num_cells = static_cast<int32_t>(m.cells.size());
+    Send(Link::kUplink, channel, m);
+    ++counters_.seen_free_reports;
+  }
 }
 
 void AgentNode::SendMapRequest(double now_s) {

@@ -6,7 +6,8 @@
 // Per loop (Tick): a new map version goes to the pipeline without stopping it; queued scans
 // are localized (POSE_<id>, DIVERGENCE_<id>) and closed temporary maps go to the outbox,
 // which sends their tiles (TEMPMAP_<id>) until the aggregator acknowledges them; MAP_REQUEST
-// when the map needs catching up; STATUS_agent_<id> every status period. Bad input is
+// when the map needs catching up; the candidates the scans saw free (CANDIDATES_FREE_<id>,
+// watching MAP_CANDIDATES); STATUS_agent_<id> every status period. Bad input is
 // counted, logged once per cause, and never stops the node.
 #pragma once
 
@@ -20,6 +21,7 @@
 #include "auth/verifier.h"
 #include "vehicle_agent/node/agent_counters.h"
 #include "vehicle_agent/node/agent_node_options.h"
+#include "vehicle_agent/node/candidate_parts.h"
 #include "vehicle_agent/node/cause_log.h"
 #include "vehicle_agent/node/sequence_store.h"
 #include "vehicle_agent/node/tile_send_queue.h"
@@ -80,6 +82,8 @@ class AgentNode {
   void OnDelta(const void* data, int size);
   void OnKeyframe(const void* data, int size);
   void OnAggregatorStatus(const void* data, int size, double now_s);
+  void OnCandidates(const void* data, int size);
+  void SendSeenFree(double now_s);
   template <typename T>
   std::optional<T> Decode(const std::string& channel, const void* data, int size);
   void Malformed(const std::string& channel, const core::Status& why);
@@ -119,6 +123,8 @@ class AgentNode {
   bool pose_initialized_ = false;
   std::optional<core::PoseEstimate> early_external_;  // before the first map
   bool building_ = false;
+  CandidateParts candidates_;
+  double next_seen_free_s_ = 0.0;
   double next_status_s_;
   AgentNodeCounters counters_;
   NamedCounters input_counters_;

@@ -1,0 +1,31 @@
+// Candidates a vehicle saw empty: its beams passed through them, none ending there, after the
+// last temporary map that saw them occupied. Such a candidate was something that left (a
+// person at a turning point, a forklift at its stop) and is dropped; a second sighting later
+// starts it afresh instead of confirming it (docs/aggregator.md, "People and forklifts").
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "aggregator/merge.h"
+
+namespace fleetmap::aggregator {
+
+// One vehicle's report: the cells and the first and last scan that passed through them, s.
+struct SeenFreeReport {
+  std::vector<int64_t> cells;
+  double first_pass_s = 0.0;
+  double last_pass_s = 0.0;
+};
+
+// The temporary-map sequence a commit of such drops records: it comes from no temporary map.
+constexpr int32_t kSeenFreeSequence = -1;
+
+// The drops the report justifies, ascending by cell: cells that are still candidates and were
+// last seen occupied by a map that ended before the report's first pass (an older report
+// says nothing about a sighting after it).
+std::vector<CellChange> PlanCandidateDrops(const SeenFreeReport& report,
+                                           const std::map<int64_t, Candidate>& candidates);
+
+}  // namespace fleetmap::aggregator
