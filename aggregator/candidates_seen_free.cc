@@ -4,6 +4,13 @@
 
 namespace fleetmap::aggregator {
 
+std::vector<int64_t> CandidateCells(const std::map<int64_t, Candidate>& candidates) {
+  std::vector<int64_t> cells;
+  cells.reserve(candidates.size());
+  for (const auto& entry : candidates) cells.push_back(entry.first);
+  return cells;
+}
+
 std::vector<CellChange> PlanCandidateDrops(const SeenFreeReport& report,
                                            const std::map<int64_t, Candidate>& candidates) {
   std::vector<int64_t> cells = report.cells;

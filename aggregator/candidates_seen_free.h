@@ -9,15 +9,15 @@
 #include <vector>
 
 #include "aggregator/merge.h"
+#include "core/seen_free_cells.h"
 
 namespace fleetmap::aggregator {
 
-// One vehicle's report: the cells and the first and last scan that passed through them, s.
-struct SeenFreeReport {
-  std::vector<int64_t> cells;
-  double first_pass_s = 0.0;
-  double last_pass_s = 0.0;
-};
+// One vehicle's report: the cells and the first and last scan that passed through them.
+using SeenFreeReport = core::SeenFreeCells;
+
+// The candidates' cells, ascending: what the vehicles watch.
+std::vector<int64_t> CandidateCells(const std::map<int64_t, Candidate>& candidates);
 
 // The temporary-map sequence a commit of such drops records: it comes from no temporary map.
 constexpr int32_t kSeenFreeSequence = -1;

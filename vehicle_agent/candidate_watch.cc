@@ -42,10 +42,10 @@ void CandidateWatch::SetCandidates(const std::vector<int64_t>& cells) {
 // that ends on the object), ended at when one of them ended there, and otherwise nothing is
 // said (something in front, no usable return, out of the field of view).
 CandidateWatch::Beam CandidateWatch::Judge(const core::LaserScan& scan,
-                                           const core::Pose2& scanner_pose, int64_t cell) const {
+                                           const core::Pose2& map_to_scanner, int64_t cell) const {
   const core::CellIndex c{static_cast<int>(cell % geometry_.width()),
                           static_cast<int>(cell / geometry_.width())};
-  const Eigen::Vector2d local = scanner_pose.Inverse().Apply(geometry_.CellCenter(c));
+  const Eigen::Vector2d local = map_to_scanner.Apply(geometry_.CellCenter(c));
   const double range = local.norm();
   if (range > options_.max_range_m || range < scan.range_min_m) return Beam::kNone;
   const double half_width_rad = std::atan2(0.5 * geometry_.resolution_m(), range);
@@ -68,8 +68,9 @@ CandidateWatch::Beam CandidateWatch::Judge(const core::LaserScan& scan,
 
 void CandidateWatch::Observe(const core::LaserScan& scan, const core::Pose2& scanner_pose) {
   if (scan.size() == 0 || scan.angle_increment_rad == 0.0 || !scanner_pose.IsFinite()) return;
+  const core::Pose2 map_to_scanner = scanner_pose.Inverse();  // once per scan, not per cell
   for (auto& [cell, count] : cells_) {
-    switch (Judge(scan, scanner_pose, cell)) {
+    switch (Judge(scan, map_to_scanner, cell)) {
       case Beam::kNone:
         break;
       case Beam::kEnded:  // something is there now: start counting again

@@ -17,6 +17,7 @@
 #include "core/pose2.h"
 #include "core/result.h"
 #include "core/scan.h"
+#include "core/seen_free_cells.h"
 
 namespace fleetmap::vehicle_agent {
 
@@ -37,14 +38,9 @@ struct CandidateWatchOptions {
   core::Status Validate() const;
 };
 
-// A batch of candidates seen free, with the time of the first and the last scan that passed
-// through any of them (the aggregator drops a candidate only when the batch started after the
-// last temporary map that saw it occupied).
-struct CandidatesSeenFree {
-  double first_pass_s = 0.0;
-  double last_pass_s = 0.0;
-  std::vector<int64_t> cells;  // cell indices of the fleet map, ascending
-};
+// The batch a vehicle reports: the aggregator drops a candidate only when the batch's first
+// pass came after the last temporary map that saw it occupied.
+using CandidatesSeenFree = core::SeenFreeCells;
 
 class CandidateWatch {
  public:
@@ -72,7 +68,8 @@ class CandidateWatch {
     bool reported = false;
   };
   enum class Beam { kNone, kPassed, kEnded };
-  Beam Judge(const core::LaserScan& scan, const core::Pose2& scanner_pose, int64_t cell) const;
+  // `map_to_scanner`: the inverse of the scanner's pose in the map.
+  Beam Judge(const core::LaserScan& scan, const core::Pose2& map_to_scanner, int64_t cell) const;
 
   core::GridGeometry geometry_;
   CandidateWatchOptions options_;

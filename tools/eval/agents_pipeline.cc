@@ -74,17 +74,15 @@ class AgentsPipeline : public Pipeline {
 
   // What a vehicle's beams saw free goes to the aggregator at once (in-process, no link).
   void ReportSeenFree(size_t v, double now_s) {
-    vehicle_agent::CandidatesSeenFree seen = agents_[v]->TakeSeenFree();
+    const core::SeenFreeCells seen = agents_[v]->TakeSeenFree();
     if (seen.cells.empty()) return;
-    auto dropped = aggregator_.DropCandidatesSeenFree(
-        world_.scenario().vehicles[v].id,
-        {std::move(seen.cells), seen.first_pass_s, seen.last_pass_s}, now_s);
+    auto dropped =
+        aggregator_.DropCandidatesSeenFree(world_.scenario().vehicles[v].id, seen, now_s);
     if (dropped.ok() && *dropped > 0) ShareCandidates();
   }
 
   void ShareCandidates() {
-    std::vector<int64_t> cells;
-    for (const auto& entry : aggregator_.store().candidates()) cells.push_back(entry.first);
+    const std::vector<int64_t> cells = aggregator::CandidateCells(aggregator_.store().candidates());
     for (auto& agent : agents_) agent->SetCandidates(cells);
   }
 

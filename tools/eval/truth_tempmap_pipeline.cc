@@ -74,17 +74,14 @@ class TruthTempMapPipeline : public Pipeline {
     vehicle_agent::CandidateWatch& watch = watches_[e.vehicle];
     if (watch.num_candidates() == 0) return;
     watch.Observe(e.scan, e.true_scanner_pose);
-    vehicle_agent::CandidatesSeenFree seen = watch.TakeSeenFree();
+    const core::SeenFreeCells seen = watch.TakeSeenFree();
     if (seen.cells.empty()) return;
-    auto dropped = aggregator_.DropCandidatesSeenFree(
-        VehicleId(e.vehicle), {std::move(seen.cells), seen.first_pass_s, seen.last_pass_s},
-        e.scan.stamp_s);
+    auto dropped = aggregator_.DropCandidatesSeenFree(VehicleId(e.vehicle), seen, e.scan.stamp_s);
     if (dropped.ok() && *dropped > 0) ShareCandidates();
   }
 
   void ShareCandidates() {
-    std::vector<int64_t> cells;
-    for (const auto& entry : aggregator_.store().candidates()) cells.push_back(entry.first);
+    const std::vector<int64_t> cells = aggregator::CandidateCells(aggregator_.store().candidates());
     for (vehicle_agent::CandidateWatch& watch : watches_) watch.SetCandidates(cells);
   }
 
