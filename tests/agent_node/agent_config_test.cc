@@ -40,6 +40,14 @@ TEST(AgentConfigTest, TheShippedExampleHoldsTheDefaults) {
   EXPECT_DOUBLE_EQ(bp.mapper.map.size_m, bd.mapper.map.size_m);
   EXPECT_DOUBLE_EQ(bp.max_duration_s, bd.max_duration_s);
   EXPECT_DOUBLE_EQ(bp.edge_margin_m, bd.edge_margin_m);
+  const auto& wp = c->node.pipeline.candidate_watch;
+  const auto& wd = d.node.pipeline.candidate_watch;
+  EXPECT_DOUBLE_EQ(wp.pass_margin_m, wd.pass_margin_m);
+  EXPECT_DOUBLE_EQ(wp.hit_margin_m, wd.hit_margin_m);
+  EXPECT_EQ(wp.min_free_scans, wd.min_free_scans);
+  EXPECT_DOUBLE_EQ(wp.max_range_m, wd.max_range_m);
+  EXPECT_DOUBLE_EQ(c->node.pipeline.candidate_watch_max_sigma_m,
+                   d.node.pipeline.candidate_watch_max_sigma_m);
   EXPECT_DOUBLE_EQ(c->node.outbox.first_resend_s, d.node.outbox.first_resend_s);
   EXPECT_DOUBLE_EQ(c->node.outbox.max_resend_s, d.node.outbox.max_resend_s);
   EXPECT_EQ(c->node.outbox.max_pending_maps, d.node.outbox.max_pending_maps);
@@ -122,6 +130,8 @@ TEST(AgentConfigTest, MistakesAreErrorsThatNameTheKeyAndLine) {
            {"vehicle_id: v1\nrates: {status_period_s: fast}\n",
             "rates.status_period_s: has the wrong type"},
            {"vehicle_id: v1\ninputs: {can: {mapping: {wheel_radius_m: -1}}}\n", "wheel_radius_m"},
+           {"vehicle_id: v1\ncandidate_watch: {margin_m: 0.2}\n",
+            "candidate_watch.margin_m: unknown key"},
            {"vehicle_id: [v1\n", "a.yaml:"},
        }) {
     auto parsed = ParseAgentConfig(c.yaml, "a.yaml");
@@ -135,7 +145,9 @@ TEST(AgentConfigTest, MistakesAreErrorsThatNameTheKeyAndLine) {
                            "vehicle_id: v1\nrates: {loop_wait_s: 2}\n",
                            "vehicle_id: v1\nrates: {shutdown_drain_s: -1}\n",
                            "vehicle_id: v1\ninputs: {scan_source: sick, sick: {port: 0}}\n",
-                           "vehicle_id: v1\ninitial_pose: external\n", "vehicle_id: 'v.1'\n"}) {
+                           "vehicle_id: v1\ninitial_pose: external\n", "vehicle_id: 'v.1'\n",
+                           "vehicle_id: v1\ncandidate_watch: {min_free_scans: 0}\n",
+                           "vehicle_id: v1\ncandidate_watch: {max_sigma_m: 0}\n"}) {
     auto parsed = ParseAgentConfig(yaml, "a.yaml");
     ASSERT_TRUE(parsed.ok()) << yaml << parsed.status().ToString();
     EXPECT_FALSE(parsed->Validate().ok()) << yaml;

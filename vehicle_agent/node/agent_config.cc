@@ -223,6 +223,20 @@ core::Status ReadBuilder(const YamlReader& r, const YAML::Node& n, TempMapBuilde
   return core::OkStatus();
 }
 
+core::Status ReadCandidateWatch(const YamlReader& r, const YAML::Node& n, AgentPipelineOptions& p) {
+  if (!n) return core::OkStatus();
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckKeys(r, n, "candidate_watch",
+                {"pass_margin_m", "hit_margin_m", "min_free_scans", "max_range_m", "max_sigma_m"}));
+  CandidateWatchOptions& w = p.candidate_watch;
+  READ_NUMBER(n, "pass_margin_m", "candidate_watch.", w.pass_margin_m);
+  READ_NUMBER(n, "hit_margin_m", "candidate_watch.", w.hit_margin_m);
+  READ_AS(int, n, "min_free_scans", "candidate_watch.", w.min_free_scans);
+  READ_NUMBER(n, "max_range_m", "candidate_watch.", w.max_range_m);
+  READ_NUMBER(n, "max_sigma_m", "candidate_watch.", p.candidate_watch_max_sigma_m);
+  return core::OkStatus();
+}
+
 core::Status ReadOutbox(const YamlReader& r, const YAML::Node& n, OutboxOptions& o) {
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(CheckKeys(
@@ -329,7 +343,7 @@ core::Result<AgentConfig> ParseAgentConfig(const std::string& yaml_text, const s
       CheckKeys(r, root, "",
                 {"vehicle_id", "map", "state_dir", "final_map", "key_file", "scanner_mount",
                  "initial_pose", "urls", "inputs", "localization", "divergence", "builder",
-                 "outbox", "map_updates", "rates", "pose_link"}));
+                 "candidate_watch", "outbox", "map_updates", "rates", "pose_link"}));
   AgentConfig c;
   AgentPipelineOptions& p = c.node.pipeline;
   FLEETMAP_ASSIGN_OR_RETURN(p.vehicle_id,
@@ -346,6 +360,7 @@ core::Result<AgentConfig> ParseAgentConfig(const std::string& yaml_text, const s
   FLEETMAP_RETURN_IF_ERROR(ReadLocalization(r, Section(root, "localization"), p.localizer));
   FLEETMAP_RETURN_IF_ERROR(ReadDivergence(r, Section(root, "divergence"), p.divergence));
   FLEETMAP_RETURN_IF_ERROR(ReadBuilder(r, Section(root, "builder"), p.builder));
+  FLEETMAP_RETURN_IF_ERROR(ReadCandidateWatch(r, Section(root, "candidate_watch"), p));
   FLEETMAP_RETURN_IF_ERROR(ReadOutbox(r, Section(root, "outbox"), c.node.outbox));
   FLEETMAP_RETURN_IF_ERROR(ReadRates(r, Section(root, "rates"), c));
   FLEETMAP_RETURN_IF_ERROR(ReadLinks(r, root, c));
