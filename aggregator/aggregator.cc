@@ -192,11 +192,14 @@ core::Result<MergeReport> Aggregator::Submit(const core::TempMap& map, double no
   return Commit(map, Assess(map), now_s);
 }
 
-core::Result<int> Aggregator::DropCandidatesSeenFree(const std::string& vehicle_id,
-                                                     const SeenFreeReport& report, double now_s) {
+core::Result<std::vector<int64_t>> Aggregator::DropCandidatesSeenFree(const std::string& vehicle_id,
+                                                                      const SeenFreeReport& report,
+                                                                      double now_s) {
   std::vector<CellChange> drops = PlanCandidateDrops(report, store_.candidates());
-  if (drops.empty()) return 0;
-  const int dropped = static_cast<int>(drops.size());
+  std::vector<int64_t> dropped;
+  dropped.reserve(drops.size());
+  for (const CellChange& d : drops) dropped.push_back(d.cell);
+  if (drops.empty()) return dropped;
   MergeCommit commit{
       store_.version() + 1,
       {vehicle_id, kSeenFreeSequence, report.first_pass_s, report.last_pass_s, now_s},

@@ -105,10 +105,11 @@ class Aggregator {
   core::Result<MergeReport> Submit(const core::TempMap& map, double now_s);
 
   // Drops the candidates `vehicle_id` saw empty (PlanCandidateDrops), journaled as one commit
-  // of a new version; nothing (no version) when the report justifies no drop. Returns how
-  // many were dropped.
-  core::Result<int> DropCandidatesSeenFree(const std::string& vehicle_id,
-                                           const SeenFreeReport& report, double now_s);
+  // of a new version; nothing (no version) when the report justifies no drop. Returns the
+  // cells dropped, ascending.
+  core::Result<std::vector<int64_t>> DropCandidatesSeenFree(const std::string& vehicle_id,
+                                                            const SeenFreeReport& report,
+                                                            double now_s);
 
   // Writes a snapshot now (persistence only; FailedPrecondition without).
   core::Status WriteSnapshot();

@@ -342,8 +342,8 @@ void AggregatorNode::OnSeenFree(const std::string& channel, const void* data, in
                  " saw free not dropped: " + dropped.status().ToString());
     return;
   }
-  if (*dropped == 0) return;
-  counters_.candidates_dropped += *dropped;
+  if (dropped->empty()) return;
+  counters_.candidates_dropped += static_cast<int64_t>(dropped->size());
   const CurrentMapStore& store = aggregator_.store();
   if (auto delta = store.Delta(store.version() - 1); delta.ok()) SendDelta(*delta, now_s);
   SendCandidates(now_s);

@@ -85,6 +85,37 @@ TEST_F(PersistenceTest, RestartFromTheJournalGivesTheSameMapAndVersion) {
   ExpectSame(restarted, *reference);
 }
 
+TEST_F(PersistenceTest, CandidatesSeenFreeAreDroppedInAJournaledVersionOfTheirOwn) {
+  const auto drop_three = [](Aggregator& a) {
+    std::vector<int64_t> cells = CandidateCells(a.store().candidates());
+    EXPECT_GE(cells.size(), 3u);
+    cells.resize(3);
+    const std::vector<int64_t> asked = {cells[2], cells[0], cells[1], 0};  // 0: no candidate
+    const uint64_t version = a.store().version();
+    // A pass before the sighting's end says nothing about it.
+    auto early = a.DropCandidatesSeenFree("v1", {asked, 5.0, 6.0}, 30.0);
+    EXPECT_TRUE(early.ok() && early->empty());
+    EXPECT_EQ(a.store().version(), version);
+    auto dropped = a.DropCandidatesSeenFree("v1", {asked, 12.0, 13.0}, 30.0);
+    EXPECT_TRUE(dropped.ok());
+    EXPECT_EQ(*dropped, cells);  // the three candidates, ascending
+    EXPECT_EQ(a.store().version(), version + 1);
+    for (int64_t c : cells) EXPECT_EQ(a.store().candidates().count(c), 0u) << c;
+  };
+  {
+    Aggregator a = Open(Options());
+    Feed(a, 0, 1);  // seen once: candidates
+    drop_three(a);
+  }
+  RestoreReport report;
+  Aggregator restarted = Open(Options(), &report);
+  EXPECT_EQ(report.journal_records, 2);
+  auto reference = Aggregator::Create(testing::HallMap(), Options());
+  Feed(*reference, 0, 1);
+  drop_three(*reference);
+  ExpectSame(restarted, *reference);
+}
+
 TEST_F(PersistenceTest, TornLastRecordIsDroppedAndTheMapIsTheVersionBefore) {
   {
     Aggregator a = Open(Options());

@@ -27,6 +27,10 @@ TEST(EvalFiguresTest, APalletWhereAPersonWalkedBeforeIsStillAnAddition) {
   EXPECT_EQ(ClassifyOverlayCell(pallet), OverlayClass::kAddedOk);
   pallet.occupied = false;
   EXPECT_EQ(ClassifyOverlayCell(pallet), OverlayClass::kMissed);
+  pallet.seen_free_near = true;  // a vehicle reported it free and it was dropped
+  EXPECT_EQ(ClassifyOverlayCell(pallet), OverlayClass::kMissedSeenFree);
+  pallet.occupied = true;  // mapped again later
+  EXPECT_EQ(ClassifyOverlayCell(pallet), OverlayClass::kAddedOk);
   OverlayCell wall;
   wall.is_static = true;
   EXPECT_EQ(ClassifyOverlayCell(wall), OverlayClass::kWallErased);

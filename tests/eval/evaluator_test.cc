@@ -110,6 +110,35 @@ TEST_F(EvaluatorTest, MappedPersonIsCaught) {
   EXPECT_LT(r.changes.added_precision, 1.0);  // they are false additions too
 }
 
+TEST_F(EvaluatorTest, ObjectCellsLostToSeenFreeDropsAreCounted) {
+  EXPECT_FALSE(Score(run_).changes.seen_free_drops.has_value());  // the oracle drops nothing
+  EXPECT_NE(ReportJson(Score(run_)).find("\"seen_free.added_missed\": null"), std::string::npos);
+  RunRecord watched = run_;
+  watched.RecordSeenFreeDrops({Index(8.5, 2.5)});  // a person's turning point: no loss
+  ChangeScores c = Score(watched).changes;
+  EXPECT_EQ(c.seen_free_drops, 1);
+  EXPECT_EQ(c.seen_free_drops_near_added, 0);
+  EXPECT_EQ(c.added_missed_seen_free, 0);
+  // box_a's cells dropped and never mapped again: each of them is a loss the drops caused.
+  std::vector<int64_t> box;
+  for (int64_t i = 0; i < world_->geometry().num_cells(); ++i) {
+    const sim::CellObservations* o = simulator_->observations().Cell(i);
+    const Eigen::Vector2d p = world_->geometry().CellCenter(
+        {int(i % world_->geometry().width()), int(i / world_->geometry().width())});
+    if (o && o->LastState() == core::CellState::kOccupied &&
+        (p - Eigen::Vector2d(3, 1.5)).norm() < 1)
+      box.push_back(i);
+  }
+  ASSERT_GT(box.size(), 20u);
+  for (int64_t i : box) SetCell(watched, i, core::CellState::kFree);
+  watched.RecordSeenFreeDrops(box);
+  c = Score(watched).changes;
+  EXPECT_EQ(c.seen_free_drops, int64_t(box.size()) + 1);
+  EXPECT_EQ(c.seen_free_drops_near_added, int64_t(box.size()));
+  EXPECT_EQ(c.added_missed_seen_free, int64_t(box.size()));
+  EXPECT_LT(c.added_recall, 0.5);
+}
+
 TEST_F(EvaluatorTest, MissedRemovalLowersRecall) {
   RunRecord stale = run_;
   // Keep box_b in the map although it was seen gone.

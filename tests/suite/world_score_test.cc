@@ -49,6 +49,21 @@ TEST(WorldScoreTest, TheAnchorsErrorIsReadWhereGiven) {
   EXPECT_DOUBLE_EQ(with->anchor_trans_p95_cells, 2.5);
 }
 
+// The added cells lost to candidates dropped as seen free, as a share of the added cells; a
+// run that does not record drops (null) has no share, not 0.
+TEST(WorldScoreTest, TheAddedCellsLostToSeenFreeDropsAreAShareOfTheAdded) {
+  EXPECT_TRUE(std::isnan(ReadWorldScore(Write("report_no_drops", kReport))->added_lost_seen_free));
+  std::string report = kReport;
+  const size_t at = report.find("\"merges.accepted\"");
+  report.insert(at, "\"seen_free.added_missed\": null, ");
+  EXPECT_TRUE(std::isnan(ReadWorldScore(Write("report_null_drops", report))->added_lost_seen_free));
+  report = kReport;
+  report.insert(at, "\"seen_free.added_missed\": 30, ");
+  auto s = ReadWorldScore(Write("report_drops", report));
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  EXPECT_DOUBLE_EQ(s->added_lost_seen_free, 0.1);  // 30 of 300
+}
+
 TEST(WorldScoreTest, AReportWithoutAKeyOrNotJsonIsDataLoss) {
   std::string report = kReport;
   report.replace(report.find("\"actor_cells_mapped\""), 20, "\"actors\"");

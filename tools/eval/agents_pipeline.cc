@@ -14,6 +14,7 @@ class AgentsPipeline : public Pipeline {
       : world_(world), options_(options), aggregator_(std::move(aggregator)) {
     run_.pipeline = name();
     run_.RecordVersion(aggregator_.store().current_map());
+    run_.RecordSeenFreeDrops({});
     for (const sim::VehicleSpec& v : world.scenario().vehicles) {
       vehicle_agent::AgentPipelineOptions o = options.agent;
       o.vehicle_id = v.id;
@@ -78,7 +79,9 @@ class AgentsPipeline : public Pipeline {
     if (seen.cells.empty()) return;
     auto dropped =
         aggregator_.DropCandidatesSeenFree(world_.scenario().vehicles[v].id, seen, now_s);
-    if (dropped.ok() && *dropped > 0) ShareCandidates();
+    if (!dropped.ok() || dropped->empty()) return;
+    run_.RecordSeenFreeDrops(*dropped);
+    ShareCandidates();
   }
 
   void ShareCandidates() {

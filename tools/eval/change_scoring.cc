@@ -57,7 +57,31 @@ double F1(int64_t correct, int64_t predicted, int64_t recalled, int64_t truth) {
   return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
 }
 
+// Whether the vehicles' reports of candidates seen free dropped real objects.
+void ScoreSeenFreeDrops(const RunRecord& run, const Mask& true_added, const Mask& final_occupied,
+                        int w, int h, int tolerance, ChangeScores& s) {
+  const Mask& dropped = run.dropped_seen_free;
+  const Mask near_added = Dilate(true_added, w, h, tolerance);
+  const Mask near_dropped = Dilate(dropped, w, h, tolerance);  // as NearSeenFreeDrops
+  const Mask near_occupied = Dilate(final_occupied, w, h, tolerance);
+  int64_t drops = 0, drops_near_added = 0, missed = 0;
+  for (size_t i = 0; i < dropped.size(); ++i) {
+    drops += dropped[i];
+    drops_near_added += dropped[i] && near_added[i];
+    missed += true_added[i] && !near_occupied[i] && near_dropped[i];
+  }
+  s.seen_free_drops = drops;
+  s.seen_free_drops_near_added = drops_near_added;
+  s.added_missed_seen_free = missed;
+}
+
 }  // namespace
+
+std::vector<uint8_t> NearSeenFreeDrops(const RunRecord& run, const core::GridGeometry& geometry,
+                                       int tolerance_cells) {
+  if (run.dropped_seen_free.size() != static_cast<size_t>(geometry.num_cells())) return {};
+  return Dilate(run.dropped_seen_free, geometry.width(), geometry.height(), tolerance_cells);
+}
 
 std::vector<uint8_t> ActorSweptCells(const sim::World& world, double sample_period_s) {
   const core::GridGeometry& g = world.geometry();
@@ -130,6 +154,8 @@ ChangeScores ScoreChanges(const sim::World& world, const sim::ObservationLog& ob
     const bool occupied = final_occupied[i] || (!run.ever_occupied.empty() && run.ever_occupied[i]);
     s.actor_cells_mapped += swept[i] && !near_structure[i] && occupied;
   }
+  if (run.dropped_seen_free.size() == n)
+    ScoreSeenFreeDrops(run, true_added, final_occupied, w, h, options.tolerance_cells, s);
   return s;
 }
 

@@ -7,6 +7,8 @@
 // still the right edge.
 #pragma once
 
+#include <optional>
+
 #include "tools/eval/run_record.h"
 #include "tools/sim/observation_log.h"
 #include "tools/sim/world.h"
@@ -25,6 +27,10 @@ struct ChangeScores {
   double removed_precision = 0.0, removed_recall = 0.0;
   int64_t static_cells_erased = 0;  // occupied in the static map, not in the final map
   int64_t actor_cells_mapped = 0;   // swept by an actor, no object's or wall's, yet occupied
+  // Candidates dropped because a vehicle saw them free (unset when the run does not record
+  // them): all of them, those within tolerance of a truly added cell, and the truly added
+  // cells missed at the end with such a drop within tolerance (what the drops cost).
+  std::optional<int64_t> seen_free_drops, seen_free_drops_near_added, added_missed_seen_free;
 };
 
 struct ScoringOptions {
@@ -34,6 +40,11 @@ struct ScoringOptions {
 
 ChangeScores ScoreChanges(const sim::World& world, const sim::ObservationLog& observations,
                           const RunRecord& run, const ScoringOptions& options = {});
+
+// Per cell: a candidate within `tolerance_cells` (Chebyshev) was dropped as seen free. Empty
+// when the run does not record such drops.
+std::vector<uint8_t> NearSeenFreeDrops(const RunRecord& run, const core::GridGeometry& geometry,
+                                       int tolerance_cells = 1);
 
 // Cells an actor's disc covered at some time of the scenario.
 std::vector<uint8_t> ActorSweptCells(const sim::World& world, double sample_period_s);

@@ -92,6 +92,8 @@ cv::Vec3b ColourOf(OverlayClass k) {  // BGR
       return {0, 0, 230};  // red
     case OverlayClass::kMissed:
       return {230, 0, 0};  // blue
+    case OverlayClass::kMissedSeenFree:
+      return {255, 255, 255};  // white
     case OverlayClass::kRemovedOk:
       return {220, 200, 0};  // cyan
     case OverlayClass::kFalseRemoval:
@@ -115,7 +117,7 @@ OverlayClass ClassifyOverlayCell(const OverlayCell& c) {
   if (c.actor_swept && !c.true_added && (c.occupied || c.ever_occupied))
     return OverlayClass::kActorMapped;
   if (c.occupied) return c.true_added ? OverlayClass::kAddedOk : OverlayClass::kFalseAdded;
-  if (c.true_added) return OverlayClass::kMissed;
+  if (c.true_added) return c.seen_free_near ? OverlayClass::kMissedSeenFree : OverlayClass::kMissed;
   if (c.ever_occupied)
     return c.true_removed ? OverlayClass::kRemovedOk : OverlayClass::kFalseRemoval;
   if (c.true_removed) return OverlayClass::kMissedRemoval;
@@ -129,6 +131,7 @@ core::Status WriteOverlayPng(const sim::World& world, const sim::ObservationLog&
   cv::Mat img = MapImage(run.final_map, scale);
   const core::TriStateClassifier classify;
   const std::vector<uint8_t> swept = ActorSweptCells(world, 0.05);
+  const std::vector<uint8_t> seen_free = NearSeenFreeDrops(run, g);
   for (int64_t i = 0; i < g.num_cells(); ++i) {
     OverlayCell c;
     c.is_static = classify(world.static_map().cells()[i]) == core::CellState::kOccupied;
@@ -139,11 +142,13 @@ core::Status WriteOverlayPng(const sim::World& world, const sim::ObservationLog&
     c.true_added = truth == core::CellState::kOccupied && !c.is_static;
     c.true_removed = o && o->ever_hit && truth == core::CellState::kFree;
     c.actor_swept = swept[i];
+    c.seen_free_near = !seen_free.empty() && seen_free[i];
     const OverlayClass k = ClassifyOverlayCell(c);
     if (k != OverlayClass::kNone) Paint(img, g.height(), i, g.width(), scale, ColourOf(k));
   }
   return SaveMat(WithLegend(img,
-                            "green: added ok   red: false   blue: missed   cyan: removed ok   "
+                            "green: added ok   red: false   blue: missed   white: missed, seen "
+                            "free   cyan: removed ok   "
                             "magenta: false removal   orange: missed removal   yellow: wall "
                             "erased   purple: actor mapped at any time"),
                  path);

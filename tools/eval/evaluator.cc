@@ -106,6 +106,9 @@ std::string Number(double v) {
   return buf;
 }
 
+// A count the run may not record: null then.
+std::string Count(const std::optional<int64_t>& v) { return v ? std::to_string(*v) : "null"; }
+
 void AddStats(std::vector<std::pair<std::string, std::string>>& kv, const std::string& key,
               const SummaryStats& s) {
   kv.emplace_back(key + ".count", std::to_string(s.count));
@@ -152,6 +155,9 @@ std::string ReportJson(const EvalReport& r) {
   kv.emplace_back("changed_cells.removed.recall", Number(c.removed_recall));
   kv.emplace_back("static_cells_erased", std::to_string(c.static_cells_erased));
   kv.emplace_back("actor_cells_mapped", std::to_string(c.actor_cells_mapped));
+  kv.emplace_back("seen_free.drops", Count(c.seen_free_drops));
+  kv.emplace_back("seen_free.drops_near_added", Count(c.seen_free_drops_near_added));
+  kv.emplace_back("seen_free.added_missed", Count(c.added_missed_seen_free));
   kv.emplace_back("merges.accepted", std::to_string(r.merges_accepted));
   kv.emplace_back("merges.rejected", std::to_string(r.merges_rejected));
   AddStats(kv, "alignment.translation_m", r.align_translation_m);

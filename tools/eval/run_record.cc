@@ -11,4 +11,11 @@ void RunRecord::RecordVersion(const core::OccupancyGrid& current_map) {
   final_map = current_map;
 }
 
+void RunRecord::RecordSeenFreeDrops(const std::vector<int64_t>& cells) {
+  const size_t n = final_map.cells().size();
+  if (dropped_seen_free.size() != n) dropped_seen_free.assign(n, 0);
+  for (int64_t c : cells)
+    if (c >= 0 && static_cast<size_t>(c) < n) dropped_seen_free[static_cast<size_t>(c)] = 1;
+}
+
 }  // namespace fleetmap::eval

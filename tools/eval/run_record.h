@@ -54,12 +54,18 @@ struct RunRecord {
   std::string pipeline;  // which pipeline made this run ("oracle", "agents", ...)
   core::OccupancyGrid final_map;
   std::vector<uint8_t> ever_occupied;  // per cell: occupied in some version of the map
+  // Per cell: a candidate there was dropped because a vehicle saw it free (empty: the run
+  // does not tell, as a recorded one does not).
+  std::vector<uint8_t> dropped_seen_free;
   std::vector<MergeRecord> merges;
   std::vector<DivergenceSample> divergence;
   std::vector<PoseSample> poses;
 
   // Call with every version of the current map (the first is the static map).
   void RecordVersion(const core::OccupancyGrid& current_map);
+  // Call with the cells of every drop of candidates seen free (and once with none, so that a
+  // run without drops tells that it had none).
+  void RecordSeenFreeDrops(const std::vector<int64_t>& cells);
 };
 
 }  // namespace fleetmap::eval

@@ -21,6 +21,7 @@ class TruthTempMapPipeline : public Pipeline {
         rng_(world.scenario().seed * 7717u + options.seed) {
     run_.pipeline = name();
     run_.RecordVersion(aggregator_.store().current_map());
+    run_.RecordSeenFreeDrops({});
     disagreement_.SetMap(aggregator_.store().current_map(), aggregator_.store().semi_static());
   }
 
@@ -77,7 +78,9 @@ class TruthTempMapPipeline : public Pipeline {
     const core::SeenFreeCells seen = watch.TakeSeenFree();
     if (seen.cells.empty()) return;
     auto dropped = aggregator_.DropCandidatesSeenFree(VehicleId(e.vehicle), seen, e.scan.stamp_s);
-    if (dropped.ok() && *dropped > 0) ShareCandidates();
+    if (!dropped.ok() || dropped->empty()) return;
+    run_.RecordSeenFreeDrops(*dropped);
+    ShareCandidates();
   }
 
   void ShareCandidates() {

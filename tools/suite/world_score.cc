@@ -55,6 +55,9 @@ core::Result<WorldScore> ReadWorldScore(const std::string& path) {
   // Read where the report gives it: older reports do not.
   const auto anchor = Number(report, "alignment.anchor_translation_cells.p95");
   s.anchor_trans_p95_cells = anchor.ok() ? *anchor : std::numeric_limits<double>::quiet_NaN();
+  const auto lost = Number(report, "seen_free.added_missed");
+  s.added_lost_seen_free =
+      lost.ok() && added > 0 ? *lost / added : std::numeric_limits<double>::quiet_NaN();
   if (!std::isfinite(s.changed_f1) || !std::isfinite(erased) || !std::isfinite(actors) ||
       !std::isfinite(accepted) || !std::isfinite(rejected))
     return core::DataLoss(path + ": a count or the F1 is null");

@@ -19,6 +19,9 @@ struct WorldScore {
   // The same merges placed by their anchors alone (before the aggregator's correction); NaN
   // without an accepted merge or in a report that does not give it.
   double anchor_trans_p95_cells = 0.0;
+  // Truly added cells missed where a candidate was dropped as seen free, of all truly added
+  // cells; NaN when nothing was added or the report does not give it.
+  double added_lost_seen_free = 0.0;
   int merges_accepted = 0;
   int merges_rejected = 0;
   double run_s = 0.0;  // wall-clock seconds of the run
