@@ -197,9 +197,9 @@ core::Result<std::vector<int64_t>> Aggregator::DropCandidatesSeenFree(const std:
                                                                       double now_s) {
   std::vector<CellChange> drops = PlanCandidateDrops(report, store_.candidates());
   std::vector<int64_t> dropped;
+  if (drops.empty()) return dropped;
   dropped.reserve(drops.size());
   for (const CellChange& d : drops) dropped.push_back(d.cell);
-  if (drops.empty()) return dropped;
   MergeCommit commit{
       store_.version() + 1,
       {vehicle_id, kSeenFreeSequence, report.first_pass_s, report.last_pass_s, now_s},

@@ -59,10 +59,11 @@ double F1(int64_t correct, int64_t predicted, int64_t recalled, int64_t truth) {
 
 // Whether the vehicles' reports of candidates seen free dropped real objects.
 void ScoreSeenFreeDrops(const RunRecord& run, const Mask& true_added, const Mask& final_occupied,
-                        int w, int h, int tolerance, ChangeScores& s) {
+                        const core::GridGeometry& g, int tolerance, ChangeScores& s) {
   const Mask& dropped = run.dropped_seen_free;
+  const int w = g.width(), h = g.height();
   const Mask near_added = Dilate(true_added, w, h, tolerance);
-  const Mask near_dropped = Dilate(dropped, w, h, tolerance);  // as NearSeenFreeDrops
+  const Mask near_dropped = NearSeenFreeDrops(run, g, tolerance);
   const Mask near_occupied = Dilate(final_occupied, w, h, tolerance);
   int64_t drops = 0, drops_near_added = 0, missed = 0;
   for (size_t i = 0; i < dropped.size(); ++i) {
@@ -155,7 +156,7 @@ ChangeScores ScoreChanges(const sim::World& world, const sim::ObservationLog& ob
     s.actor_cells_mapped += swept[i] && !near_structure[i] && occupied;
   }
   if (run.dropped_seen_free.size() == n)
-    ScoreSeenFreeDrops(run, true_added, final_occupied, w, h, options.tolerance_cells, s);
+    ScoreSeenFreeDrops(run, true_added, final_occupied, g, options.tolerance_cells, s);
   return s;
 }
 
