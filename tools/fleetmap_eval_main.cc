@@ -111,8 +111,8 @@ void Progress(double t_s) { std::fprintf(stderr, "  simulated %.0f s\n", t_s); }
 std::string MergeTable(const eval::RunRecord& run, double resolution_m) {
   std::string table =
       "| vehicle | seq | closed (s) | accepted | added | removed | lines | residual x, y (cells), "
-      "theta (deg) | anchor's x, y (cells), theta (deg) | reason |\n"
-      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+      "theta (deg) | anchor's x, y (cells), theta (deg) | builder's drift (m, deg) | reason |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const eval::MergeRecord& m : run.merges) {
     const core::Pose2 e = core::Between(m.true_origin, m.placed_origin);
     const core::Pose2 a = core::Between(m.true_origin, m.anchor_origin);
@@ -123,7 +123,10 @@ std::string MergeTable(const eval::RunRecord& run, double resolution_m) {
                   m.cells_added, m.cells_removed, m.lines.size(), e.x_m / resolution_m,
                   e.y_m / resolution_m, e.theta_rad * 180 / M_PI, a.x_m / resolution_m,
                   a.y_m / resolution_m, a.theta_rad * 180 / M_PI);
-    table += row + m.reason + " |\n";
+    char drift[64] = "-";  // perfect maps and recorded runs do not know it
+    if (std::isfinite(m.drift_m))
+      std::snprintf(drift, sizeof(drift), "%.3f, %.3f", m.drift_m, m.drift_deg);
+    table += row + std::string(drift) + " | " + m.reason + " |\n";
   }
   return table;
 }
@@ -239,6 +242,10 @@ int WriteResults(const Args& args, const sim::World& world, const sim::Simulator
   Figure(name, "align_rot_max_deg", report.align_rotation_deg.max, "deg");
   Figure(name, "merges_accepted", report.merges_accepted, "merges");
   Figure(name, "merges_rejected", report.merges_rejected, "merges");
+  if (report.tempmap_drift_m.count > 0) {  // only the agents pipeline knows its builders' drift
+    Figure(name, "tempmap_drift_p95_m", report.tempmap_drift_m.p95, "m");
+    Figure(name, "tempmap_drift_p95_deg", report.tempmap_drift_deg.p95, "deg");
+  }
   if (!args.quiet)
     std::fprintf(stderr, "fleetmap-eval: wrote %s/report.json and figures\n", out.c_str());
   return 0;

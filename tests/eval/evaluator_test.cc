@@ -95,6 +95,26 @@ TEST_F(EvaluatorTest, AnchorErrorIsScoredBesideThePlacement) {
   EXPECT_NEAR(Score(run_).anchor_translation_cells.max, 0.0, 1e-9);
 }
 
+// The builders' drift over every map, accepted or not; a run that does not know it gives none.
+TEST_F(EvaluatorTest, TheBuildersDriftIsSummarizedWhereTheRunKnowsIt) {
+  EXPECT_EQ(Score(run_).tempmap_drift_m.count, 0);
+  EXPECT_NE(ReportJson(Score(run_)).find("\"tempmap.drift_m.p95\": null"), std::string::npos);
+  RunRecord drifted = run_;
+  ASSERT_FALSE(drifted.merges.empty());
+  drifted.merges.front().drift_m = 0.04;
+  drifted.merges.front().drift_deg = 0.3;
+  MergeRecord rejected = drifted.merges.front();
+  rejected.accepted = false;
+  rejected.drift_m = 0.12;
+  rejected.drift_deg = 0.7;
+  drifted.merges.push_back(rejected);
+  const EvalReport r = Score(drifted);
+  EXPECT_EQ(r.tempmap_drift_m.count, 2);
+  EXPECT_NEAR(r.tempmap_drift_m.max, 0.12, 1e-12);
+  EXPECT_NEAR(r.tempmap_drift_deg.median, 0.5, 1e-12);
+  EXPECT_NE(ReportJson(r).find("\"tempmap.drift_deg.max\": 0.7"), std::string::npos);
+}
+
 TEST_F(EvaluatorTest, ErasedWallIsCountedCellByCell) {
   RunRecord erased = run_;
   for (double x = 2.0; x < 2.5; x += 0.05) SetCell(erased, Index(x, 0.02), core::CellState::kFree);

@@ -64,6 +64,20 @@ TEST(WorldScoreTest, TheAddedCellsLostToSeenFreeDropsAreAShareOfTheAdded) {
   EXPECT_DOUBLE_EQ(s->added_lost_seen_free, 0.1);  // 30 of 300
 }
 
+TEST(WorldScoreTest, TheBuildersDriftIsReadWhereGiven) {
+  auto without = ReadWorldScore(Write("report_no_drift", kReport));
+  ASSERT_TRUE(without.ok()) << without.status().ToString();
+  EXPECT_TRUE(std::isnan(without->tempmap_drift_p95_m));
+  EXPECT_TRUE(std::isnan(without->tempmap_drift_p95_deg));
+  std::string report = kReport;
+  report.insert(report.find("\"merges.accepted\""),
+                "\"tempmap.drift_m.p95\": 0.058, \"tempmap.drift_deg.p95\": 0.32, ");
+  auto s = ReadWorldScore(Write("report_drift", report));
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  EXPECT_DOUBLE_EQ(s->tempmap_drift_p95_m, 0.058);
+  EXPECT_DOUBLE_EQ(s->tempmap_drift_p95_deg, 0.32);
+}
+
 TEST(WorldScoreTest, AReportWithoutAKeyOrNotJsonIsDataLoss) {
   std::string report = kReport;
   report.replace(report.find("\"actor_cells_mapped\""), 20, "\"actors\"");

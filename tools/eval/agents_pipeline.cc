@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "tools/eval/tempmap_drift.h"
 #include "tools/eval/tile_transport.h"
 
 namespace fleetmap::eval {
@@ -102,6 +103,10 @@ class AgentsPipeline : public Pipeline {
         map.trajectory_in_temp.empty() ? map.start_s : map.trajectory_in_temp.front().stamp_s;
     record.true_origin = world_.VehicleStateAt(v, t0).pose * map.grid.geometry().origin();
     record.anchor_origin = map.PlacedGeometry().origin();
+    const TempMapDrift drift = BuilderDrift(
+        map.trajectory_in_temp, [&](double t) { return world_.VehicleStateAt(v, t).pose; });
+    record.drift_m = drift.translation_m;
+    record.drift_deg = drift.rotation_deg;
     // The aggregator gets what travels: the map cut into tiles and put together again.
     auto received = AsReceived(map);
     if (!received.ok()) {

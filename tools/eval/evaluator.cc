@@ -12,7 +12,10 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 
 void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m, EvalReport& r) {
   std::vector<double> trans, cells, rot, anchor_cells;
+  std::vector<double> drift_m, drift_deg;
   for (const MergeRecord& m : merges) {
+    if (std::isfinite(m.drift_m)) drift_m.push_back(m.drift_m);
+    if (std::isfinite(m.drift_deg)) drift_deg.push_back(m.drift_deg);
     if (!m.accepted) {
       ++r.merges_rejected;
       continue;
@@ -33,6 +36,8 @@ void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m,
   r.align_translation_cells = Summarize(cells);
   r.align_rotation_deg = Summarize(rot);
   r.anchor_translation_cells = Summarize(anchor_cells);
+  r.tempmap_drift_m = Summarize(drift_m);
+  r.tempmap_drift_deg = Summarize(drift_deg);
 }
 
 // Per vehicle: the times at which it started a temporary map (d rose above 0), and whether
@@ -164,6 +169,8 @@ std::string ReportJson(const EvalReport& r) {
   AddStats(kv, "alignment.translation_cells", r.align_translation_cells);
   AddStats(kv, "alignment.rotation_deg", r.align_rotation_deg);
   AddStats(kv, "alignment.anchor_translation_cells", r.anchor_translation_cells);
+  AddStats(kv, "tempmap.drift_m", r.tempmap_drift_m);
+  AddStats(kv, "tempmap.drift_deg", r.tempmap_drift_deg);
   kv.emplace_back("detection.changes_seen", std::to_string(r.changes_seen));
   kv.emplace_back("detection.changes_detected", std::to_string(r.changes_detected));
   AddStats(kv, "detection.latency_s", r.detection_latency_s);

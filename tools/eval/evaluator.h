@@ -29,6 +29,9 @@ struct EvalReport {
   SummaryStats align_translation_m, align_translation_cells, align_rotation_deg;
   // The same merges' placement by their anchors alone (no correction), cells.
   SummaryStats anchor_translation_cells;
+  // How far the vehicles' builders drifted within each map, accepted or not (count 0 where
+  // the run does not know).
+  SummaryStats tempmap_drift_m, tempmap_drift_deg;
   int changes_seen = 0;      // (object, vehicle) pairs where the vehicle saw the change
   int changes_detected = 0;  // ... and d(t) > 0 followed within the trigger window
   SummaryStats detection_latency_s;

@@ -4,6 +4,7 @@
 // or read back from a recorded run.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct MergeRecord {
   // Where the vehicle placed it (its anchor, before the aggregator's correction): compared
   // with placed_origin, whether the alignment made the placement better or worse.
   core::Pose2 anchor_origin;
+  // How far the vehicle's builder drifted within the map (tempmap_drift.h); NaN where the run
+  // does not know (perfect maps, a recorded run).
+  double drift_m = std::nan("");
+  double drift_deg = std::nan("");
   std::vector<LineMatchRow> lines;
   int cells_added = 0;
   int cells_removed = 0;

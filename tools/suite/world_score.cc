@@ -55,6 +55,10 @@ core::Result<WorldScore> ReadWorldScore(const std::string& path) {
   // Read where the report gives it: older reports do not.
   const auto anchor = Number(report, "alignment.anchor_translation_cells.p95");
   s.anchor_trans_p95_cells = anchor.ok() ? *anchor : std::numeric_limits<double>::quiet_NaN();
+  const auto drift_m = Number(report, "tempmap.drift_m.p95");
+  s.tempmap_drift_p95_m = drift_m.ok() ? *drift_m : std::numeric_limits<double>::quiet_NaN();
+  const auto drift_deg = Number(report, "tempmap.drift_deg.p95");
+  s.tempmap_drift_p95_deg = drift_deg.ok() ? *drift_deg : std::numeric_limits<double>::quiet_NaN();
   const auto lost = Number(report, "seen_free.added_missed");
   s.added_lost_seen_free =
       lost.ok() && added > 0 ? *lost / added : std::numeric_limits<double>::quiet_NaN();

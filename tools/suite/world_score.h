@@ -22,6 +22,10 @@ struct WorldScore {
   // Truly added cells missed where a candidate was dropped as seen free, of all truly added
   // cells; NaN when nothing was added or the report does not give it.
   double added_lost_seen_free = 0.0;
+  // p95 over the temporary maps of how far the vehicles' builders drifted within a map
+  // (metres, degrees); NaN for perfect maps and in a report that does not give it.
+  double tempmap_drift_p95_m = 0.0;
+  double tempmap_drift_p95_deg = 0.0;
   int merges_accepted = 0;
   int merges_rejected = 0;
   double run_s = 0.0;  // wall-clock seconds of the run
