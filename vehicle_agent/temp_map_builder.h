@@ -20,6 +20,10 @@ struct TempMapBuilderOptions {
   // counts 16 times less against the odometry prior): people and a forklift walk through a
   // temporary map, and a matcher that follows them slides the map along an aisle. Measured on
   // the fleet scenario, the drift within a map fell from p90 3.7 / max 40 cells to 0.7 / 3.3.
+  // Its odometry prior (matcher.prior_sigma_xy_m, _per_m) is the vehicle's to set (agent YAML
+  // builder.odometry_sigma_m, _per_m). A tighter one than the default 5 mm + 5 % per scan
+  // keeps maps truer (1 mm + 2 %: drift p95 0.066 -> 0.023 m) but costs the office worlds
+  // (docs/experiments/2026-12-05-builder-drift.md).
   LocalMapperOptions mapper = [] {
     LocalMapperOptions o;
     o.matcher.sigma_map = 1.0;

@@ -40,6 +40,8 @@ TEST(AgentConfigTest, TheShippedExampleHoldsTheDefaults) {
   EXPECT_DOUBLE_EQ(bp.mapper.map.size_m, bd.mapper.map.size_m);
   EXPECT_DOUBLE_EQ(bp.max_duration_s, bd.max_duration_s);
   EXPECT_DOUBLE_EQ(bp.edge_margin_m, bd.edge_margin_m);
+  EXPECT_DOUBLE_EQ(bp.mapper.matcher.prior_sigma_xy_m, bd.mapper.matcher.prior_sigma_xy_m);
+  EXPECT_DOUBLE_EQ(bp.mapper.matcher.prior_sigma_xy_per_m, bd.mapper.matcher.prior_sigma_xy_per_m);
   const auto& wp = c->node.pipeline.candidate_watch;
   const auto& wd = d.node.pipeline.candidate_watch;
   EXPECT_DOUBLE_EQ(wp.pass_margin_m, wd.pass_margin_m);
@@ -147,11 +149,23 @@ TEST(AgentConfigTest, MistakesAreErrorsThatNameTheKeyAndLine) {
                            "vehicle_id: v1\ninputs: {scan_source: sick, sick: {port: 0}}\n",
                            "vehicle_id: v1\ninitial_pose: external\n", "vehicle_id: 'v.1'\n",
                            "vehicle_id: v1\ncandidate_watch: {min_free_scans: 0}\n",
-                           "vehicle_id: v1\ncandidate_watch: {max_sigma_m: 0}\n"}) {
+                           "vehicle_id: v1\ncandidate_watch: {max_sigma_m: 0}\n",
+                           "vehicle_id: v1\nbuilder: {odometry_sigma_per_m: -0.01}\n"}) {
     auto parsed = ParseAgentConfig(yaml, "a.yaml");
     ASSERT_TRUE(parsed.ok()) << yaml << parsed.status().ToString();
     EXPECT_FALSE(parsed->Validate().ok()) << yaml;
   }
+}
+
+// The builder's matcher weighs each scan against the vehicle's odometry as the file says.
+TEST(AgentConfigTest, TheOdometrysErrorSetsTheBuildersPrior) {
+  auto parsed = ParseAgentConfig(
+      "vehicle_id: v1\nbuilder: {odometry_sigma_m: 0.004, odometry_sigma_per_m: 0.05}\n", "a.yaml");
+  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+  const auto& matcher = parsed->node.pipeline.builder.mapper.matcher;
+  EXPECT_DOUBLE_EQ(matcher.prior_sigma_xy_m, 0.004);
+  EXPECT_DOUBLE_EQ(matcher.prior_sigma_xy_per_m, 0.05);
+  EXPECT_TRUE(parsed->Validate().ok());
 }
 
 TEST(AgentFlagsTest, FlagsOverrideTheFileAndAreChecked) {

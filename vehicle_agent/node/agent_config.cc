@@ -214,12 +214,15 @@ core::Status ReadDivergence(const YamlReader& r, const YAML::Node& n, Divergence
 
 core::Status ReadBuilder(const YamlReader& r, const YAML::Node& n, TempMapBuilderOptions& b) {
   if (!n) return core::OkStatus();
-  FLEETMAP_RETURN_IF_ERROR(
-      CheckKeys(r, n, "builder", {"size_m", "max_duration_s", "edge_margin_m", "levels"}));
+  FLEETMAP_RETURN_IF_ERROR(CheckKeys(r, n, "builder",
+                                     {"size_m", "max_duration_s", "edge_margin_m", "levels",
+                                      "odometry_sigma_m", "odometry_sigma_per_m"}));
   READ_NUMBER(n, "size_m", "builder.", b.mapper.map.size_m);
   READ_NUMBER(n, "max_duration_s", "builder.", b.max_duration_s);
   READ_NUMBER(n, "edge_margin_m", "builder.", b.edge_margin_m);
   READ_AS(int, n, "levels", "builder.", b.mapper.map.levels);
+  READ_NUMBER(n, "odometry_sigma_m", "builder.", b.mapper.matcher.prior_sigma_xy_m);
+  READ_NUMBER(n, "odometry_sigma_per_m", "builder.", b.mapper.matcher.prior_sigma_xy_per_m);
   return core::OkStatus();
 }
 
