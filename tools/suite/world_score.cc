@@ -17,6 +17,12 @@ core::Result<double> Number(const nlohmann::json& report, const char* key) {
   return it->get<double>();
 }
 
+// A figure read where the report gives it (older reports do not), NaN where it does not.
+double Given(const nlohmann::json& report, const char* key) {
+  const core::Result<double> v = Number(report, key);
+  return v.ok() ? *v : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 double WorldScore::RejectedShare() const {
@@ -52,16 +58,11 @@ core::Result<WorldScore> ReadWorldScore(const std::string& path) {
     if (!v.ok()) return v.status().WithContext(path);
     *f.value = *v;
   }
-  // Read where the report gives it: older reports do not.
-  const auto anchor = Number(report, "alignment.anchor_translation_cells.p95");
-  s.anchor_trans_p95_cells = anchor.ok() ? *anchor : std::numeric_limits<double>::quiet_NaN();
-  const auto drift_m = Number(report, "tempmap.drift_m.p95");
-  s.tempmap_drift_p95_m = drift_m.ok() ? *drift_m : std::numeric_limits<double>::quiet_NaN();
-  const auto drift_deg = Number(report, "tempmap.drift_deg.p95");
-  s.tempmap_drift_p95_deg = drift_deg.ok() ? *drift_deg : std::numeric_limits<double>::quiet_NaN();
-  const auto lost = Number(report, "seen_free.added_missed");
-  s.added_lost_seen_free =
-      lost.ok() && added > 0 ? *lost / added : std::numeric_limits<double>::quiet_NaN();
+  s.anchor_trans_p95_cells = Given(report, "alignment.anchor_translation_cells.p95");
+  s.tempmap_drift_p95_m = Given(report, "tempmap.drift_m.p95");
+  s.tempmap_drift_p95_deg = Given(report, "tempmap.drift_deg.p95");
+  s.added_lost_seen_free = added > 0 ? Given(report, "seen_free.added_missed") / added
+                                     : std::numeric_limits<double>::quiet_NaN();
   if (!std::isfinite(s.changed_f1) || !std::isfinite(erased) || !std::isfinite(actors) ||
       !std::isfinite(accepted) || !std::isfinite(rejected))
     return core::DataLoss(path + ": a count or the F1 is null");
