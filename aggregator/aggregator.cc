@@ -1,5 +1,6 @@
 #include "aggregator/aggregator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "aggregator/alignment_steps.h"
@@ -156,8 +157,12 @@ core::Result<MergeReport> Aggregator::Commit(const core::TempMap& map, const Ass
   if (!assessment.accepted()) return Rejected(map, assessment);
   const core::Pose2& correction = assessment.alignment.correction;
   const PlacedEvidence evidence = PlaceEvidence(map, correction, store_.static_map().geometry());
-  const MergeInputs inputs{&addable_, &store_.semi_static(), &store_.candidates(),
-                           &store_.candidate_mask(), &store_.changed_at_s()};
+  const MergeInputs inputs{&addable_,
+                           &wall_distance_,
+                           &store_.semi_static(),
+                           &store_.candidates(),
+                           &store_.candidate_mask(),
+                           &store_.changed_at_s()};
   const MergePlan plan = PlanMerge(evidence, {map.start_s, map.end_s}, inputs, options_.merge);
   MergeCommit commit{store_.version() + 1,
                      {map.vehicle_id, map.sequence, map.start_s, map.end_s, now_s},
@@ -195,20 +200,36 @@ core::Result<MergeReport> Aggregator::Submit(const core::TempMap& map, double no
 core::Result<std::vector<int64_t>> Aggregator::DropCandidatesSeenFree(const std::string& vehicle_id,
                                                                       const SeenFreeReport& report,
                                                                       double now_s) {
-  std::vector<CellChange> drops = PlanCandidateDrops(report, store_.candidates());
-  std::vector<int64_t> dropped;
-  if (drops.empty()) return dropped;
-  dropped.reserve(drops.size());
-  for (const CellChange& d : drops) dropped.push_back(d.cell);
-  MergeCommit commit{
-      store_.version() + 1,
-      {vehicle_id, kSeenFreeSequence, report.first_pass_s, report.last_pass_s, now_s},
-      core::Pose2(),
-      std::move(drops)};
+  return CommitReport(vehicle_id, {report.first_pass_s, report.last_pass_s},
+                      PlanCandidateDrops(report, store_.candidates()), now_s);
+}
+
+core::Result<std::vector<int64_t>> Aggregator::ConfirmCandidatesHeld(const std::string& vehicle_id,
+                                                                     const HeldReport& report,
+                                                                     double now_s) {
+  std::vector<CellChange> adds = PlanHeldConfirmations(report, store_.candidates(), options_.merge);
+  if (adds.empty()) return std::vector<int64_t>{};
+  const auto since = std::min_element(report.since_s.begin(), report.since_s.end());
+  const auto until = std::max_element(report.until_s.begin(), report.until_s.end());
+  return CommitReport(vehicle_id, {*since, *until}, std::move(adds), now_s);
+}
+
+core::Result<std::vector<int64_t>> Aggregator::CommitReport(const std::string& vehicle_id,
+                                                            const TimeSpan& span,
+                                                            std::vector<CellChange> changes,
+                                                            double now_s) {
+  std::vector<int64_t> cells;
+  if (changes.empty()) return cells;
+  cells.reserve(changes.size());
+  for (const CellChange& c : changes) cells.push_back(c.cell);
+  MergeCommit commit{store_.version() + 1,
+                     {vehicle_id, kSeenFreeSequence, span.start_s, span.end_s, now_s},
+                     core::Pose2(),
+                     std::move(changes)};
   FLEETMAP_RETURN_IF_ERROR(store_.Check(commit));
   if (persistence_) FLEETMAP_RETURN_IF_ERROR(persistence_->Record(commit));
   FLEETMAP_RETURN_IF_ERROR(store_.Apply(std::move(commit)).status());
-  return dropped;
+  return cells;
 }
 
 core::Status Aggregator::WriteSnapshot() {

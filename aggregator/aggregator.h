@@ -111,6 +111,11 @@ class Aggregator {
                                                             const SeenFreeReport& report,
                                                             double now_s);
 
+  // Adds the candidates a vehicle's beams kept ending at long enough (PlanHeldConfirmations);
+  // returns the cells added, ascending.
+  core::Result<std::vector<int64_t>> ConfirmCandidatesHeld(const std::string& vehicle_id,
+                                                           const HeldReport& report, double now_s);
+
   // Writes a snapshot now (persistence only; FailedPrecondition without).
   core::Status WriteSnapshot();
 
@@ -124,8 +129,14 @@ class Aggregator {
       : options_(std::move(options)),
         features_(std::move(features)),
         store_(std::move(store)),
-        addable_(AddableCells(store_.static_map(), options_.merge)) {}
+        addable_(AddableCells(store_.static_map(), options_.merge)),
+        wall_distance_(WallDistances(store_.static_map(), options_.merge.thresholds)) {}
   MergeReport Rejected(const core::TempMap& map, const Assessment& assessment);
+  // Commits what a vehicle's report of candidates justifies, as a version of its own (no
+  // temporary map: kSeenFreeSequence); returns the cells changed.
+  core::Result<std::vector<int64_t>> CommitReport(const std::string& vehicle_id,
+                                                  const TimeSpan& span,
+                                                  std::vector<CellChange> changes, double now_s);
   // The two ways of aligning, judged; `points` the subsampled surface cells, `before` how much
   // of them the static map explains at the anchor.
   Assessment ByLines(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
@@ -136,7 +147,8 @@ class Aggregator {
   AggregatorOptions options_;
   StaticMapFeatures features_;
   CurrentMapStore store_;
-  std::vector<uint8_t> addable_;  // AddableCells of the static map
+  std::vector<uint8_t> addable_;        // AddableCells of the static map
+  std::vector<uint8_t> wall_distance_;  // WallDistances of the static map
   std::optional<MapPersistence> persistence_;
   AggregatorStats stats_;
 };

@@ -25,4 +25,26 @@ std::vector<CellChange> PlanCandidateDrops(const SeenFreeReport& report,
   return drops;
 }
 
+std::vector<CellChange> PlanHeldConfirmations(const HeldReport& report,
+                                              const std::map<int64_t, Candidate>& candidates,
+                                              const MergeOptions& options) {
+  std::vector<CellChange> adds;
+  if (options.confirmations < 2) return adds;
+  for (size_t i = 0;
+       i < report.cells.size() && i < report.since_s.size() && i < report.until_s.size(); ++i) {
+    const auto it = candidates.find(report.cells[i]);
+    if (it == candidates.end()) continue;
+    const double since = report.since_s[i], until = report.until_s[i];
+    const bool long_enough = until - since >= options.confirm_min_gap_s;
+    const bool overlaps = since <= it->second.last_seen_end_s && until >= it->second.first.start_s;
+    if (long_enough && overlaps) adds.push_back({report.cells[i], CellChangeKind::kAdded});
+  }
+  std::sort(adds.begin(), adds.end(),
+            [](const CellChange& a, const CellChange& b) { return a.cell < b.cell; });
+  adds.erase(std::unique(adds.begin(), adds.end(),
+                         [](const CellChange& a, const CellChange& b) { return a.cell == b.cell; }),
+             adds.end());
+  return adds;
+}
+
 }  // namespace fleetmap::aggregator

@@ -28,4 +28,13 @@ constexpr int32_t kSeenFreeSequence = -1;
 std::vector<CellChange> PlanCandidateDrops(const SeenFreeReport& report,
                                            const std::map<int64_t, Candidate>& candidates);
 
+// A vehicle's report of candidates its beams kept ending at.
+using HeldReport = core::HeldCells;
+
+// The confirmations the report justifies, ascending by cell: cells that are still candidates,
+// held at least confirm_min_gap_s, the hold overlapping the maps that saw them.
+std::vector<CellChange> PlanHeldConfirmations(const HeldReport& report,
+                                              const std::map<int64_t, Candidate>& candidates,
+                                              const MergeOptions& options);
+
 }  // namespace fleetmap::aggregator

@@ -29,7 +29,8 @@ class Planner {
         span_(span),
         in_(in),
         o_(o),
-        cells_(MergeCellsFor(o, e.resolution_m)) {}
+        cells_(MergeCellsFor(o, e.resolution_m)),
+        wall_clearance_(WallClearance()) {}
 
   MergePlan Run() {
     std::vector<std::optional<CellChangeKind>> decided(static_cast<size_t>(w_.num_cells()));
@@ -61,9 +62,32 @@ class Planner {
     return false;
   }
 
+  // How close to a static wall this map adds nothing: static_clearance_m, or farther where
+  // this map draws the walls farther off (see MergeOptions::wall_offset_window_m).
+  int WallClearance() const {
+    const int base = cells_.static_clearance;
+    const int window = CellsFor(o_.wall_offset_window_m, e_.resolution_m);
+    if (!in_.wall_distance || window <= base) return base;
+    std::vector<int64_t> hits_at(static_cast<size_t>(window) + 1, 0);
+    int64_t hits = 0;
+    for (int y = w_.y0; y < w_.y0 + w_.height; ++y)
+      for (int x = w_.x0; x < w_.x0 + w_.width; ++x) {
+        const int d = (*in_.wall_distance)[Global(x, y)];
+        if (d <= window && Strong(x, y)) ++hits_at[static_cast<size_t>(d)], ++hits;
+      }
+    if (hits < kMinWallHits) return base;
+    int64_t within = 0;
+    for (int d = 0; d <= window; ++d)
+      if ((within += hits_at[static_cast<size_t>(d)]) * 10 >= hits * 9) return std::max(base, d);
+    return window;
+  }
+  // Fewer hits near walls say nothing about how far off the map draws them.
+  static constexpr int64_t kMinWallHits = 20;
+
   // Occupied in this map where an obstacle may be, and not an isolated return.
   bool Seen(int x, int y) const {
     if (!Strong(x, y) || !(*in_.addable)[Global(x, y)]) return false;
+    if (in_.wall_distance && (*in_.wall_distance)[Global(x, y)] <= wall_clearance_) return false;
     int neighbours = 0;
     AnyNear(x, y, 1, [&](int nx, int ny) {
       neighbours += Strong(nx, ny);
@@ -207,6 +231,7 @@ class Planner {
   const MergeInputs& in_;
   const MergeOptions& o_;
   const MergeCells cells_;
+  const int wall_clearance_;
 };
 
 }  // namespace
@@ -218,6 +243,8 @@ core::Status MergeOptions::Validate() const {
     return core::InvalidArgument("merge.remove_max_log_odds must be < 0");
   if (!(static_clearance_m >= 0 && static_clearance_m <= 0.5))
     return core::InvalidArgument("merge.static_clearance_m must be in [0, 0.5] m");
+  if (!(wall_offset_window_m >= 0 && wall_offset_window_m <= 0.5))
+    return core::InvalidArgument("merge.wall_offset_window_m must be in [0, 0.5] m");
   if (min_occupied_neighbours < 0 || min_occupied_neighbours > 8)
     return core::InvalidArgument("merge.min_occupied_neighbours must be in [0, 8]");
   if (!(removal_clearance_m >= 0 && removal_clearance_m <= 0.5))
@@ -263,6 +290,34 @@ std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
     }
   }
   return addable;
+}
+
+std::vector<uint8_t> WallDistances(const core::OccupancyGrid& static_map,
+                                   const core::OccupancyThresholds& thresholds) {
+  const core::TriStateClassifier classify(thresholds);
+  const int w = static_map.geometry().width(), h = static_map.geometry().height();
+  const std::vector<float>& cells = static_map.cells();
+  std::vector<uint8_t> d(cells.size(), 255);
+  for (size_t i = 0; i < cells.size(); ++i)
+    if (classify(cells[i]) == core::CellState::kOccupied) d[i] = 0;
+  // The chessboard distance transform: two passes over the 8-neighbourhood.
+  auto relax = [&](size_t i, int x, int y, int dx, int dy) {
+    const int nx = x + dx, ny = y + dy;
+    if (nx < 0 || ny < 0 || nx >= w || ny >= h) return;
+    const uint8_t n = d[static_cast<size_t>(ny) * w + nx];
+    if (n < 255 && n + 1 < d[i]) d[i] = static_cast<uint8_t>(n + 1);
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * w + x;
+      relax(i, x, y, -1, -1), relax(i, x, y, 0, -1), relax(i, x, y, 1, -1), relax(i, x, y, -1, 0);
+    }
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = w - 1; x >= 0; --x) {
+      const size_t i = static_cast<size_t>(y) * w + x;
+      relax(i, x, y, 1, 1), relax(i, x, y, 0, 1), relax(i, x, y, -1, 1), relax(i, x, y, 1, 0);
+    }
+  return d;
 }
 
 MergePlan PlanMerge(const PlacedEvidence& evidence, const TimeSpan& span, const MergeInputs& inputs,

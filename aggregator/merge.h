@@ -41,6 +41,12 @@ struct MergeOptions {
   // noise and a fraction of a cell of alignment error put a wall's hits onto the free cells
   // in front of it, which are no obstacle. 0..0.5 m; 0.10 m is 2 cells at 5 cm.
   double static_clearance_m = 0.10;
+  // A temporary map placed a little off draws the walls it saw beside the static ones, as a
+  // second wall in front of them. Its hits within this distance (metres) of a static wall
+  // measure how far off: where nine in ten of them lie within d of the wall, that map adds
+  // nothing within d of a static wall either (never less than static_clearance_m). 0 switches
+  // this off; at most 0.5 m.
+  double wall_offset_window_m = 0.3;
   // An added cell needs this many of its 8 neighbours at add_min_log_odds too, so an
   // isolated hit (a mixed pixel at a depth edge) is no obstacle. 0..8.
   int min_occupied_neighbours = 1;
@@ -99,6 +105,11 @@ int CellsFor(double distance_m, double resolution_m);
 std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
                                   const MergeOptions& options);
 
+// Per static cell: its Chebyshev distance in cells to the nearest occupied static cell, at
+// most 255 (also where there is none).
+std::vector<uint8_t> WallDistances(const core::OccupancyGrid& static_map,
+                                   const core::OccupancyThresholds& thresholds);
+
 // When a temporary map was built, seconds.
 struct TimeSpan {
   double start_s = 0.0;
@@ -125,6 +136,7 @@ struct Candidate {
 // What the merge reads of the current map.
 struct MergeInputs {
   const std::vector<uint8_t>* addable = nullptr;             // AddableCells of the static map
+  const std::vector<uint8_t>* wall_distance = nullptr;       // WallDistances; null: no offset guard
   const std::vector<uint8_t>* semi_static = nullptr;         // per cell, 1: a semi-static obstacle
   const std::map<int64_t, Candidate>* candidates = nullptr;  // cell -> its sightings
   const std::vector<uint8_t>* candidate_mask = nullptr;      // per cell, 1: a candidate

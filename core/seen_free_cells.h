@@ -14,4 +14,11 @@ struct SeenFreeCells {
   double last_pass_s = 0.0;    // the last such scan
 };
 
+// Cells of the fleet map a vehicle's beams kept ending at: per cell, since when and until
+// when, with no pause longer than the vehicle's hold_gap_s (vehicle_agent/candidate_watch.h).
+struct HeldCells {
+  std::vector<int64_t> cells;  // ascending
+  std::vector<double> since_s, until_s;
+};
+
 }  // namespace fleetmap::core

@@ -23,6 +23,9 @@ constexpr char kMapRequestChannel[] = "MAP_REQUEST";
 // The fleet map's candidates a vehicle's scans passed through, none ending there.
 constexpr char kCandidatesFreePrefix[] = "CANDIDATES_FREE_";
 constexpr char kCandidatesFreeChannelRegex[] = "CANDIDATES_FREE_.*";
+// ... and those its beams kept ending at for long enough: something that stays.
+constexpr char kCandidatesHeldPrefix[] = "CANDIDATES_HELD_";
+constexpr char kCandidatesHeldChannelRegex[] = "CANDIDATES_HELD_.*";
 // Downlink: what the aggregator publishes. TEMPMAP_ACK shares the prefix of the vehicles'
 // TEMPMAP_<id> (and so matches kTempMapChannelRegex): IsTempMapTileChannel tells them apart.
 constexpr char kTempMapAckChannel[] = "TEMPMAP_ACK";
@@ -33,6 +36,8 @@ constexpr char kMergeReportChannel[] = "MERGE_REPORT";
 constexpr char kMapCandidatesChannel[] = "MAP_CANDIDATES";
 // Cells per MAP_CANDIDATES or CANDIDATES_FREE_<id> message: 1.2 KB, one UDP datagram.
 constexpr int kMaxCandidateCellsPerMessage = 300;
+// Cells per CANDIDATES_HELD_<id> message (a cell and two times each): 1.2 KB.
+constexpr int kMaxHeldCellsPerMessage = 100;
 // Both: every process's heartbeat, STATUS_<process>: STATUS_agent_<id>, STATUS_aggregator.
 constexpr char kStatusPrefix[] = "STATUS_";
 constexpr char kAgentStatusPrefix[] = "STATUS_agent_";
@@ -50,6 +55,9 @@ inline std::string DivergenceChannel(const std::string& vehicle) {
 inline std::string TempMapChannel(const std::string& vehicle) { return kTempMapPrefix + vehicle; }
 inline std::string CandidatesFreeChannel(const std::string& vehicle) {
   return kCandidatesFreePrefix + vehicle;
+}
+inline std::string CandidatesHeldChannel(const std::string& vehicle) {
+  return kCandidatesHeldPrefix + vehicle;
 }
 inline std::string StatusChannel(const std::string& process) { return kStatusPrefix + process; }
 

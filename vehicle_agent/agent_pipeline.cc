@@ -61,8 +61,10 @@ CandidatesSeenFree AgentPipeline::TakeSeenFree() {
   return watch_ ? watch_->TakeSeenFree() : CandidatesSeenFree{};
 }
 
+CandidatesHeld AgentPipeline::TakeHeld() { return watch_ ? watch_->TakeHeld() : CandidatesHeld{}; }
+
 void AgentPipeline::WatchCandidates(const core::LaserScan& scan, const core::PoseEstimate& pose) {
-  if (!watch_ || watch_->num_candidates() == 0) return;
+  if (!watch_) return;  // with no candidates yet it remembers where beams end
   const double sigma_m = std::sqrt(std::max(pose.covariance(0, 0), pose.covariance(1, 1)));
   if (!(sigma_m <= options_.candidate_watch_max_sigma_m)) return;
   watch_->Observe(scan, pose.pose_in_map * options_.scanner_in_base);

@@ -74,6 +74,8 @@ class AgentPipeline {
   void SetCandidates(const std::vector<int64_t>& cells);
   // The candidates this vehicle's scans saw free since the last call (CandidateWatch).
   CandidatesSeenFree TakeSeenFree();
+  // The candidates this vehicle's scans saw held since the last call (CandidateWatch).
+  CandidatesHeld TakeHeld();
   // Closes a temporary map being built (at shutdown).
   std::optional<core::TempMap> Flush(double stamp_s);
 

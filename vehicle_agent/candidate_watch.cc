@@ -15,6 +15,10 @@ core::Status CandidateWatchOptions::Validate() const {
       CheckOption(hit_margin_m > 0, "CandidateWatchOptions.hit_margin_m", hit_margin_m, "> 0"));
   FLEETMAP_RETURN_IF_ERROR(CheckOption(min_free_scans >= 1, "CandidateWatchOptions.min_free_scans",
                                        min_free_scans, ">= 1"));
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckOption(hold_gap_s > 0, "CandidateWatchOptions.hold_gap_s", hold_gap_s, "> 0"));
+  FLEETMAP_RETURN_IF_ERROR(CheckOption(report_held_s >= 0, "CandidateWatchOptions.report_held_s",
+                                       report_held_s, ">= 0"));
   return CheckOption(max_range_m > 0, "CandidateWatchOptions.max_range_m", max_range_m, "> 0");
 }
 
@@ -32,9 +36,56 @@ void CandidateWatch::SetCandidates(const std::vector<int64_t>& cells) {
   }
   cells_.swap(kept);
   std::unordered_set<int64_t> still(cells.begin(), cells.end());
-  seen_free_.erase(std::remove_if(seen_free_.begin(), seen_free_.end(),
-                                  [&](int64_t c) { return !still.count(c); }),
-                   seen_free_.end());
+  auto gone = [&](int64_t c) { return !still.count(c); };
+  seen_free_.erase(std::remove_if(seen_free_.begin(), seen_free_.end(), gone), seen_free_.end());
+  held_.erase(std::remove_if(held_.begin(), held_.end(), gone), held_.end());
+}
+
+void CandidateWatch::RememberEnds(const core::LaserScan& scan, const core::Pose2& scanner_pose) {
+  const double t = scan.stamp_s, gap = options_.hold_gap_s;
+  for (size_t i = 0; i < scan.size(); ++i) {
+    if (!scan.IsValidReturn(i) || scan.ranges_m[i] > options_.max_range_m) continue;
+    const double a = scan.angle(i), r = scan.ranges_m[i];
+    const core::CellIndex c =
+        geometry_.WorldToCell(scanner_pose.Apply({r * std::cos(a), r * std::sin(a)}));
+    if (!geometry_.Contains(c)) continue;
+    const auto [it, first] = streaks_.try_emplace(geometry_.Index(c), Streak{t, t});
+    if (!first && it->second.last_s < t - gap) it->second.since_s = t;  // after a pause
+    it->second.last_s = t;
+  }
+  if (t - pruned_s_ < gap) return;  // forget what paused, once per hold_gap_s
+  for (auto it = streaks_.begin(); it != streaks_.end();)
+    it = it->second.last_s < t - gap ? streaks_.erase(it) : std::next(it);
+  pruned_s_ = t;
+}
+
+double CandidateWatch::HeldSince(int64_t cell, double now_s) const {
+  const int w = geometry_.width();
+  const int x = static_cast<int>(cell % w), y = static_cast<int>(cell / w);
+  double since = now_s;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const core::CellIndex n{x + dx, y + dy};
+      if (!geometry_.Contains(n)) continue;
+      const auto it = streaks_.find(geometry_.Index(n));
+      if (it != streaks_.end() && it->second.last_s >= now_s - options_.hold_gap_s)
+        since = std::min(since, it->second.since_s);
+    }
+  return since;
+}
+
+void CandidateWatch::Held(int64_t cell, Count& count, double now_s) {
+  if (!count.holding || now_s - count.held_until_s > options_.hold_gap_s) {
+    count.holding = true;
+    count.held_reported = false;
+    count.held_since_s = std::max(HeldSince(cell, now_s), count.passed_s);
+  }
+  count.held_until_s = now_s;
+  if (options_.report_held_s > 0 && !count.held_reported &&
+      count.held_until_s - count.held_since_s >= options_.report_held_s) {
+    count.held_reported = true;
+    held_.push_back(cell);
+  }
 }
 
 // The beams whose bearing falls on the cell, and one more on each side: the cell is passed
@@ -68,6 +119,7 @@ CandidateWatch::Beam CandidateWatch::Judge(const core::LaserScan& scan,
 
 void CandidateWatch::Observe(const core::LaserScan& scan, const core::Pose2& scanner_pose) {
   if (scan.size() == 0 || scan.angle_increment_rad == 0.0 || !scanner_pose.IsFinite()) return;
+  if (options_.report_held_s > 0) RememberEnds(scan, scanner_pose);
   const core::Pose2 map_to_scanner = scanner_pose.Inverse();  // once per scan, not per cell
   for (auto& [cell, count] : cells_) {
     switch (Judge(scan, map_to_scanner, cell)) {
@@ -76,8 +128,11 @@ void CandidateWatch::Observe(const core::LaserScan& scan, const core::Pose2& sca
       case Beam::kEnded:  // something is there now: start counting again
         count.free_scans = 0;
         count.reported = false;
+        Held(cell, count, scan.stamp_s);
         break;
       case Beam::kPassed:
+        count.holding = false;
+        count.passed_s = scan.stamp_s;
         if (count.free_scans == 0) count.first_pass_s = scan.stamp_s;
         count.last_pass_s = scan.stamp_s;
         if (++count.free_scans == options_.min_free_scans && !count.reported) {
@@ -100,6 +155,19 @@ CandidatesSeenFree CandidateWatch::TakeSeenFree() {
     out.cells.push_back(cell);
   }
   seen_free_.clear();
+  return out;
+}
+
+CandidatesHeld CandidateWatch::TakeHeld() {
+  CandidatesHeld out;
+  std::sort(held_.begin(), held_.end());
+  for (int64_t cell : held_) {
+    const Count& count = cells_.at(cell);
+    out.cells.push_back(cell);
+    out.since_s.push_back(count.held_since_s);
+    out.until_s.push_back(count.held_until_s);
+  }
+  held_.clear();
   return out;
 }
 

@@ -35,8 +35,22 @@ struct CandidateWatchOptions {
   // Cells farther than this from the scanner are not judged, metres: far beams are wide and
   // a small angular error of the pose moves them by more than a cell.
   double max_range_m = 15.0;
+  // A cell that this vehicle's beams keep ending at, never longer apart than hold_gap_s
+  // (seconds > 0), is held; a pass through it or a longer pause ends the hold. A candidate
+  // held report_held_s (seconds; 0: never reported) is reported held: something that stayed
+  // longer than a person waits or a forklift stops (the aggregator adds it when the hold
+  // lasted its confirm_min_gap_s). The hold of a new candidate starts where the beams began
+  // to end at it (or at a neighbour), before the aggregator made it a candidate: one pass past
+  // a pallet can be enough. Off by default: at 10 s the generator's forklifts, which stop and
+  // turn in place for up to 11 s, are held; at 13 s candidates drawn in front of a wall by a
+  // map placed off are held by the beams that end on the wall
+  // (docs/experiments/2026-12-05-wall-offset-and-holds.md).
+  double hold_gap_s = 1.0;
+  double report_held_s = 0.0;
   core::Status Validate() const;
 };
+
+using CandidatesHeld = core::HeldCells;
 
 // The batch a vehicle reports: the aggregator drops a candidate only when the batch's first
 // pass came after the last temporary map that saw it occupied.
@@ -57,6 +71,8 @@ class CandidateWatch {
 
   // The candidates seen free since the last call (empty cells: none).
   CandidatesSeenFree TakeSeenFree();
+  // The candidates held report_held_s since the last call (each once per hold).
+  CandidatesHeld TakeHeld();
 
   size_t num_candidates() const { return cells_.size(); }
   const core::GridGeometry& geometry() const { return geometry_; }
@@ -66,7 +82,18 @@ class CandidateWatch {
     int free_scans = 0;
     double first_pass_s = 0.0, last_pass_s = 0.0;
     bool reported = false;
+    bool holding = false, held_reported = false;
+    double held_since_s = 0.0, held_until_s = 0.0;
+    double passed_s = -1e300;  // the last scan whose beams passed through it
   };
+  // Where beam ends fell, with no pause longer than hold_gap_s: since when, and the last time.
+  struct Streak {
+    double since_s = 0.0, last_s = 0.0;
+  };
+  void RememberEnds(const core::LaserScan& scan, const core::Pose2& scanner_pose);
+  // When beams began to end at the cell or a neighbour of it without a pause; `now_s` if not.
+  double HeldSince(int64_t cell, double now_s) const;
+  void Held(int64_t cell, Count& count, double now_s);
   enum class Beam { kNone, kPassed, kEnded };
   // `map_to_scanner`: the inverse of the scanner's pose in the map.
   Beam Judge(const core::LaserScan& scan, const core::Pose2& map_to_scanner, int64_t cell) const;
@@ -75,6 +102,9 @@ class CandidateWatch {
   CandidateWatchOptions options_;
   std::unordered_map<int64_t, Count> cells_;
   std::vector<int64_t> seen_free_;
+  std::vector<int64_t> held_;
+  std::unordered_map<int64_t, Streak> streaks_;  // cells beams ended at within hold_gap_s
+  double pruned_s_ = -1e300;
 };
 
 }  // namespace fleetmap::vehicle_agent

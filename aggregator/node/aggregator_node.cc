@@ -118,17 +118,19 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
     return;
   }
   const bool seen_free = lcmtypes::HasPrefix(channel, lcmtypes::kCandidatesFreePrefix);
-  if (!tile && !seen_free && channel != lcmtypes::kMapRequestChannel) {
+  const bool held = lcmtypes::HasPrefix(channel, lcmtypes::kCandidatesHeldPrefix);
+  if (!tile && !seen_free && !held && channel != lcmtypes::kMapRequestChannel) {
     Refuse(
         "unknown channel", counters_.unknown_channel,
         "message on channel '" + channel.substr(0, 80) + "', which the aggregator does not read");
     return;
   }
-  // TEMPMAP_<id> and CANDIDATES_FREE_<id> belong to vehicle <id>; any member of the fleet may
-  // ask for maps.
-  const std::string owner = seen_free
-                                ? lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesFreePrefix)
-                                : lcmtypes::ChannelSuffix(channel, lcmtypes::kTempMapPrefix);
+  // TEMPMAP_<id>, CANDIDATES_FREE_<id> and CANDIDATES_HELD_<id> belong to vehicle <id>; any
+  // member of the fleet may ask for maps.
+  const std::string owner =
+      seen_free ? lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesFreePrefix)
+      : held    ? lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesHeldPrefix)
+                : lcmtypes::ChannelSuffix(channel, lcmtypes::kTempMapPrefix);
   auth::Opened opened;
   const auth::Verdict verdict = verifier_.Open(channel, data, size, owner, &opened);
   if (verdict != auth::Verdict::kAccepted) {
@@ -140,6 +142,8 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
     OnTile(channel, opened.data, opened.size, now_s);
   } else if (seen_free) {
     OnSeenFree(channel, opened.data, opened.size, now_s);
+  } else if (held) {
+    OnHeld(channel, opened.data, opened.size, now_s);
   } else {
     OnRequest(opened.data, opened.size);
   }
@@ -313,37 +317,66 @@ void AggregatorNode::Complete(const MapKey& key, const core::TempMap& map, int32
   }
 }
 
-void AggregatorNode::OnSeenFree(const std::string& channel, const void* data, int size,
-                                double now_s) {
-  auto msg = lcmtypes::Decode<fleetmap::candidates_free_t>(data, size);
+template <typename Message>
+std::optional<Message> AggregatorNode::VehicleReport(const std::string& channel, const void* data,
+                                                     int size, const char* prefix,
+                                                     const std::string& name) {
+  auto msg = lcmtypes::Decode<Message>(data, size);
   if (!msg.ok()) {
-    Refuse("CANDIDATES_FREE: malformed", counters_.malformed_messages,
-           channel + ": not a candidates_free_t: " + msg.status().ToString());
-    return;
+    Refuse(name + ": malformed", counters_.malformed_messages,
+           channel + ": not a " + Message::getTypeName() + ": " + msg.status().ToString());
+    return std::nullopt;
   }
-  const std::string vehicle = lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesFreePrefix);
-  if (msg->vehicle_id != vehicle) {
-    Refuse("CANDIDATES_FREE: wrong vehicle id", counters_.wrong_vehicle_id,
+  if (msg->vehicle_id != lcmtypes::ChannelSuffix(channel, prefix)) {
+    Refuse(name + ": wrong vehicle id", counters_.wrong_vehicle_id,
            channel + ": a report of vehicle '" + msg->vehicle_id.substr(0, kMaxVehicleIdBytes) +
                "' refused: a vehicle reports on its own channel");
-    return;
+    return std::nullopt;
   }
+  return std::move(*msg);
+}
+
+void AggregatorNode::OnSeenFree(const std::string& channel, const void* data, int size,
+                                double now_s) {
+  const auto msg = VehicleReport<fleetmap::candidates_free_t>(
+      channel, data, size, lcmtypes::kCandidatesFreePrefix, "CANDIDATES_FREE");
+  if (!msg) return;
   auto report = SeenFreeFromMessage(*msg, aggregator_.store().current_map().geometry().num_cells());
-  if (!report.ok()) {
-    Refuse("CANDIDATES_FREE: invalid", counters_.bad_seen_free,
-           channel + ": report refused: " + report.status().ToString());
-    return;
-  }
+  if (!report.ok())
+    return Refuse("CANDIDATES_FREE: invalid", counters_.bad_seen_free,
+                  channel + ": report refused: " + report.status().ToString());
   ++counters_.seen_free_reports;
-  auto dropped = aggregator_.DropCandidatesSeenFree(vehicle, *report, now_s);
-  if (!dropped.ok()) {
+  ReportApplied(msg->vehicle_id,
+                aggregator_.DropCandidatesSeenFree(msg->vehicle_id, *report, now_s),
+                counters_.candidates_dropped, "saw free not dropped", now_s);
+}
+
+void AggregatorNode::OnHeld(const std::string& channel, const void* data, int size, double now_s) {
+  const auto msg = VehicleReport<fleetmap::candidates_held_t>(
+      channel, data, size, lcmtypes::kCandidatesHeldPrefix, "CANDIDATES_HELD");
+  if (!msg) return;
+  auto report = HeldFromMessage(*msg, aggregator_.store().current_map().geometry().num_cells());
+  if (!report.ok())
+    return Refuse("CANDIDATES_HELD: invalid", counters_.bad_held,
+                  channel + ": report refused: " + report.status().ToString());
+  ++counters_.held_reports;
+  ReportApplied(msg->vehicle_id, aggregator_.ConfirmCandidatesHeld(msg->vehicle_id, *report, now_s),
+                counters_.candidates_held_added, "saw held not added", now_s);
+}
+
+// The cells a vehicle's report changed, in a version of their own: counted, and their delta
+// and the new set of candidates go out. A failed journal write changed nothing.
+void AggregatorNode::ReportApplied(const std::string& vehicle,
+                                   const core::Result<std::vector<int64_t>>& cells,
+                                   int64_t& counter, const std::string& what, double now_s) {
+  if (!cells.ok()) {
     ++counters_.persist_errors;
-    log_.Warning("candidates " + vehicle.substr(0, kMaxVehicleIdBytes) +
-                 " saw free not dropped: " + dropped.status().ToString());
+    log_.Warning("candidates " + vehicle.substr(0, kMaxVehicleIdBytes) + " " + what + ": " +
+                 cells.status().ToString());
     return;
   }
-  if (dropped->empty()) return;
-  counters_.candidates_dropped += static_cast<int64_t>(dropped->size());
+  if (cells->empty()) return;
+  counter += static_cast<int64_t>(cells->size());
   const CurrentMapStore& store = aggregator_.store();
   if (auto delta = store.Delta(store.version() - 1); delta.ok()) SendDelta(*delta, now_s);
   SendCandidates(now_s);

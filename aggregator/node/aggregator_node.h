@@ -16,6 +16,8 @@
 //       keyframe (whole, or the tiles listed), coalesced (request_queue.h).
 //   CANDIDATES_FREE_<vehicle>  candidates the vehicle's scans saw empty: dropped
 //       (Aggregator::DropCandidatesSeenFree, a version of its own and its MAP_DELTA).
+//   CANDIDATES_HELD_<vehicle>  candidates the vehicle's beams kept ending at for long enough:
+//       added (Aggregator::ConfirmCandidatesHeld, likewise).
 // Downlink, what it sends: TEMPMAP_ACK, MERGE_REPORT, MAP_DELTA, MAP_KEYFRAME (also every
 // keyframe_period_s), MAP_CANDIDATES (after each change of the candidates, and with each
 // periodic keyframe), STATUS_<process_name> every status_period_s.
@@ -101,6 +103,14 @@ class AggregatorNode {
   // A vehicle's CANDIDATES_FREE_<id>: the candidates it saw empty are dropped (a new version),
   // and the new set goes out.
   void OnSeenFree(const std::string& channel, const void* data, int size, double now_s);
+  // A vehicle's CANDIDATES_HELD_<id>: the candidates it saw held long enough are added.
+  void OnHeld(const std::string& channel, const void* data, int size, double now_s);
+  // Decoded, from the vehicle whose channel it came on; refused (counted, logged) otherwise.
+  template <typename Message>
+  std::optional<Message> VehicleReport(const std::string& channel, const void* data, int size,
+                                       const char* prefix, const std::string& name);
+  void ReportApplied(const std::string& vehicle, const core::Result<std::vector<int64_t>>& cells,
+                     int64_t& counter, const std::string& what, double now_s);
   void Refuse(const std::string& cause, int64_t& counter, const std::string& line);
   bool Throttled(const std::string& vehicle, double now_s);
   int PendingMaps(const std::string& vehicle) const;

@@ -41,21 +41,52 @@ std::vector<fleetmap::map_candidates_t> CandidateMessages(
   return out;
 }
 
+namespace {
+
+core::Status CheckCount(int32_t count, int max) {
+  if (count >= 1 && count <= max) return core::OkStatus();
+  return core::InvalidArgument("num_cells " + std::to_string(count) + " (1 to " +
+                               std::to_string(max) + ")");
+}
+
+core::Status CheckCell(int32_t cell, int64_t num_cells) {
+  if (cell >= 0 && cell < num_cells) return core::OkStatus();
+  return core::InvalidArgument("cell " + std::to_string(cell) + " outside the map's " +
+                               std::to_string(num_cells) + " cells");
+}
+
+}  // namespace
+
 core::Result<SeenFreeReport> SeenFreeFromMessage(const fleetmap::candidates_free_t& message,
                                                  int64_t num_cells) {
-  if (message.num_cells < 1 || message.num_cells > lcmtypes::kMaxCandidateCellsPerMessage)
-    return core::InvalidArgument("num_cells " + std::to_string(message.num_cells) + " (1 to " +
-                                 std::to_string(lcmtypes::kMaxCandidateCellsPerMessage) + ")");
+  FLEETMAP_RETURN_IF_ERROR(CheckCount(message.num_cells, lcmtypes::kMaxCandidateCellsPerMessage));
   SeenFreeReport report;
   report.first_pass_s = lcmtypes::FromUtime(message.first_pass_utime);
   report.last_pass_s = lcmtypes::FromUtime(message.last_pass_utime);
   if (!(report.first_pass_s <= report.last_pass_s))
     return core::InvalidArgument("first_pass_utime after last_pass_utime");
   for (int32_t cell : message.cells) {
-    if (cell < 0 || cell >= num_cells)
-      return core::InvalidArgument("cell " + std::to_string(cell) + " outside the map's " +
-                                   std::to_string(num_cells) + " cells");
+    FLEETMAP_RETURN_IF_ERROR(CheckCell(cell, num_cells));
     report.cells.push_back(cell);
+  }
+  return report;
+}
+
+core::Result<HeldReport> HeldFromMessage(const fleetmap::candidates_held_t& message,
+                                         int64_t num_cells) {
+  FLEETMAP_RETURN_IF_ERROR(CheckCount(message.num_cells, lcmtypes::kMaxHeldCellsPerMessage));
+  HeldReport report;
+  const double base_s = lcmtypes::FromUtime(message.base_utime);
+  for (int32_t i = 0; i < message.num_cells; ++i) {
+    const int32_t cell = message.cells[static_cast<size_t>(i)];
+    FLEETMAP_RETURN_IF_ERROR(CheckCell(cell, num_cells));
+    const int32_t since = message.since_ms[static_cast<size_t>(i)];
+    const int32_t until = message.until_ms[static_cast<size_t>(i)];
+    if (since > until)
+      return core::InvalidArgument("cell " + std::to_string(cell) + " held until before since");
+    report.cells.push_back(cell);
+    report.since_s.push_back(base_s + 1e-3 * since);
+    report.until_s.push_back(base_s + 1e-3 * until);
   }
   return report;
 }

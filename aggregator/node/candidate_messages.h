@@ -1,5 +1,6 @@
-// The two messages of the candidate watch (docs/channels.md): the aggregator's candidates,
-// sent in parts of one datagram each, and a vehicle's report of candidates it saw free.
+// The messages of the candidate watch (docs/architecture.md): the aggregator's candidates,
+// sent in parts of one datagram each, and a vehicle's reports of candidates it saw free or
+// held.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include "aggregator/candidates_seen_free.h"
 #include "core/result.h"
 #include "fleetmap/candidates_free_t.hpp"
+#include "fleetmap/candidates_held_t.hpp"
 #include "fleetmap/map_candidates_t.hpp"
 
 namespace fleetmap::aggregator::node {
@@ -22,5 +24,10 @@ std::vector<fleetmap::map_candidates_t> CandidateMessages(
 // map of `num_cells`, pass times in order. InvalidArgument naming what is wrong.
 core::Result<SeenFreeReport> SeenFreeFromMessage(const fleetmap::candidates_free_t& message,
                                                  int64_t num_cells);
+
+// ... and its report of candidates held: 1 to kMaxHeldCellsPerMessage cells inside the map,
+// each held from before until.
+core::Result<HeldReport> HeldFromMessage(const fleetmap::candidates_held_t& message,
+                                         int64_t num_cells);
 
 }  // namespace fleetmap::aggregator::node

@@ -30,8 +30,9 @@ void LcmLinks::Bind(AggregatorNode* node) {
   // LCM queues at most 30 messages per subscription by default and silently drops the rest:
   // one temporary map is a burst of up to ~100 tiles, and a merge keeps us busy for a while.
   constexpr int kQueueCapacity = 4096;
-  for (const char* channel : {lcmtypes::kTempMapChannelRegex, lcmtypes::kMapRequestChannel,
-                              lcmtypes::kCandidatesFreeChannelRegex}) {
+  for (const char* channel :
+       {lcmtypes::kTempMapChannelRegex, lcmtypes::kMapRequestChannel,
+        lcmtypes::kCandidatesFreeChannelRegex, lcmtypes::kCandidatesHeldChannelRegex}) {
     lcm::Subscription* sub = uplink_.subscribe(channel, &LcmLinks::OnUplink, this);
     if (sub != nullptr) sub->setQueueCapacity(kQueueCapacity);
   }

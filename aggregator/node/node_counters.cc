@@ -41,6 +41,9 @@ NamedCounters Named(const NodeCounters& c) {
           {"seen_free_reports", c.seen_free_reports},
           {"bad_seen_free", c.bad_seen_free},
           {"candidates_dropped", c.candidates_dropped},
+          {"held_reports", c.held_reports},
+          {"bad_held", c.bad_held},
+          {"candidates_held_added", c.candidates_held_added},
           {"candidate_sets_sent", c.candidate_sets_sent}};
 }
 

@@ -42,15 +42,18 @@ struct NodeCounters {
   int64_t oversize_messages = 0;  // published messages over max_message_bytes
   // Bounds per vehicle (vehicle_limits.h) and the authentication (auth/verifier.h, whose
   // counters follow these in STATUS).
-  int64_t oversize_received = 0;    // received messages over limits.max_received_bytes
-  int64_t throttled_tiles = 0;      // tiles of a vehicle over its tile rate: dropped
-  int64_t throttled_merges = 0;     // complete maps of a vehicle over its merge rate: wait
-  int64_t vehicle_maps_full = 0;    // a new map of a vehicle with too many incomplete ones
-  int64_t auth_refused = 0;         // messages the verifier refused (by cause: auth_*)
-  int64_t seen_free_reports = 0;    // valid CANDIDATES_FREE_<id> reports
-  int64_t bad_seen_free = 0;        // reports with impossible cells or times
-  int64_t candidates_dropped = 0;   // candidates dropped because a vehicle saw them free
-  int64_t candidate_sets_sent = 0;  // MAP_CANDIDATES sets (each in one or more parts)
+  int64_t oversize_received = 0;      // received messages over limits.max_received_bytes
+  int64_t throttled_tiles = 0;        // tiles of a vehicle over its tile rate: dropped
+  int64_t throttled_merges = 0;       // complete maps of a vehicle over its merge rate: wait
+  int64_t vehicle_maps_full = 0;      // a new map of a vehicle with too many incomplete ones
+  int64_t auth_refused = 0;           // messages the verifier refused (by cause: auth_*)
+  int64_t seen_free_reports = 0;      // valid CANDIDATES_FREE_<id> reports
+  int64_t bad_seen_free = 0;          // reports with impossible cells or times
+  int64_t candidates_dropped = 0;     // candidates dropped because a vehicle saw them free
+  int64_t held_reports = 0;           // valid CANDIDATES_HELD_<id> reports
+  int64_t bad_held = 0;               // reports with impossible cells or times
+  int64_t candidates_held_added = 0;  // candidates added because a vehicle saw them held
+  int64_t candidate_sets_sent = 0;    // MAP_CANDIDATES sets (each in one or more parts)
 };
 
 using NamedCounters = std::vector<std::pair<std::string, int64_t>>;

@@ -47,6 +47,8 @@ TEST(AgentConfigTest, TheShippedExampleHoldsTheDefaults) {
   EXPECT_DOUBLE_EQ(wp.pass_margin_m, wd.pass_margin_m);
   EXPECT_DOUBLE_EQ(wp.hit_margin_m, wd.hit_margin_m);
   EXPECT_EQ(wp.min_free_scans, wd.min_free_scans);
+  EXPECT_DOUBLE_EQ(wp.hold_gap_s, wd.hold_gap_s);
+  EXPECT_DOUBLE_EQ(wp.report_held_s, wd.report_held_s);
   EXPECT_DOUBLE_EQ(wp.max_range_m, wd.max_range_m);
   EXPECT_DOUBLE_EQ(c->node.pipeline.candidate_watch_max_sigma_m,
                    d.node.pipeline.candidate_watch_max_sigma_m);
@@ -150,6 +152,7 @@ TEST(AgentConfigTest, MistakesAreErrorsThatNameTheKeyAndLine) {
                            "vehicle_id: v1\ninitial_pose: external\n", "vehicle_id: 'v.1'\n",
                            "vehicle_id: v1\ncandidate_watch: {min_free_scans: 0}\n",
                            "vehicle_id: v1\ncandidate_watch: {max_sigma_m: 0}\n",
+                           "vehicle_id: v1\ncandidate_watch: {hold_gap_s: 0}\n",
                            "vehicle_id: v1\nbuilder: {odometry_sigma_per_m: -0.01}\n"}) {
     auto parsed = ParseAgentConfig(yaml, "a.yaml");
     ASSERT_TRUE(parsed.ok()) << yaml << parsed.status().ToString();

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "fleetmap/candidates_free_t.hpp"
+#include "fleetmap/candidates_held_t.hpp"
 #include "fleetmap/map_candidates_t.hpp"
 #include "tests/agent_node/node_test_util.h"
 #include "vehicle_agent/node/candidate_parts.h"
@@ -89,6 +90,34 @@ TEST(CandidatesAgentTest, CandidatesTheScansPassThroughAreReportedFree) {
   testing::FeedMessage(**node, Link::kDownlink, lcmtypes::kMapCandidatesChannel,
                        Part(6, 3, 1, {floor_a}), 8.0);
   EXPECT_EQ(testing::Counter(**node, "malformed_messages"), 1);
+}
+
+// The same drive: the beams keep ending at the pallet's face for seconds, and it is reported
+// held (here after 3 s instead of the default 10, which the short drive does not last);
+// the floor cells never are.
+TEST(CandidatesAgentTest, ACandidateTheBeamsKeepEndingAtIsReportedHeld) {
+  const sim::World world = testing::RoomWorld(
+      "[{id: pallet, rect: {center: [5.5, 4.2], size: [1.2, 0.8]}, appear_s: 0}]", 8.0);
+  MemoryPublisher out;
+  AgentNodeOptions options = testing::RoomOptions(world);
+  options.pipeline.candidate_watch.report_held_s = 3.0;
+  auto node = AgentNode::Create(options, &out, nullptr, world.static_map(), 0.0);
+  ASSERT_TRUE(node.ok()) << node.status().ToString();
+  const core::GridGeometry& g = world.static_map().geometry();
+  const int32_t floor_a = CellAt(g, 4.0, 3.0), pallet = CellAt(g, 5.5, 3.81);
+  testing::FeedMessage(**node, Link::kDownlink, lcmtypes::kMapCandidatesChannel,
+                       Part(5, 0, 1, {std::min(floor_a, pallet), std::max(floor_a, pallet)}), 0.0);
+  testing::DriveNode(world, **node, 8.0);
+
+  const auto reports =
+      out.Decoded<fleetmap::candidates_held_t>(lcmtypes::CandidatesHeldChannel("v1"));
+  ASSERT_EQ(reports.size(), 1u);
+  const fleetmap::candidates_held_t& r = reports[0];
+  EXPECT_EQ(r.vehicle_id, "v1");
+  ASSERT_EQ(r.cells, std::vector<int32_t>{pallet});
+  EXPECT_GE(r.until_ms[0] - r.since_ms[0], 3000);
+  EXPECT_GE(r.base_utime, 0);
+  EXPECT_EQ(testing::Counter(**node, "held_reports"), 1);
 }
 
 }  // namespace

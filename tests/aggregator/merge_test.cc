@@ -38,8 +38,12 @@ class MergeTest : public ::testing::Test {
  protected:
   MergePlan Plan(const PlacedEvidence& e, TimeSpan span) {
     addable_ = AddableCells(store_.static_map(), options_);
-    const MergeInputs in{&addable_, &store_.semi_static(), &store_.candidates(),
-                         &store_.candidate_mask(), &store_.changed_at_s()};
+    const MergeInputs in{&addable_,
+                         wall_distance_,
+                         &store_.semi_static(),
+                         &store_.candidates(),
+                         &store_.candidate_mask(),
+                         &store_.changed_at_s()};
     return PlanMerge(e, span, in, options_);
   }
   void Commit(const MergePlan& plan, TimeSpan span) {
@@ -54,6 +58,7 @@ class MergeTest : public ::testing::Test {
   MergeOptions options_;
   CurrentMapStore store_{SmallMap(), {}};
   std::vector<uint8_t> addable_;
+  const std::vector<uint8_t>* wall_distance_ = nullptr;  // no offset guard unless set
 };
 
 TEST_F(MergeTest, FirstSightOnlyWithOneConfirmation) {
@@ -177,6 +182,50 @@ TEST_F(MergeTest, ACandidateAVehicleSawEmptyIsDroppedAndNotConfirmedLater) {
   EXPECT_EQ(later.candidates, 9);
 }
 
+// A pallet seen by one pass for 12 s, a forklift stopped for 8: the vehicle's beams ended at
+// both all along. The pallet's candidates are added; the forklift's, held for less than
+// confirm_min_gap_s, are not, nor is a hold from before the maps saw the place.
+TEST_F(MergeTest, ACandidateHeldLongerThanTheGapIsAdded) {
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 8, 10, 10, kHit);
+  Commit(Plan(e, {6, 9}), {6, 9});
+  const int64_t centre = 9 * 20 + 9, corner = 8 * 20 + 8, free_cell = 5 * 20 + 5;
+  const double gap = options_.confirm_min_gap_s;
+  HeldReport report{{corner, centre, free_cell}, {6.5, 6.5, 6.5}, {6.5 + gap, 6.4 + gap, 20}};
+  const std::vector<CellChange> adds = PlanHeldConfirmations(report, store_.candidates(), options_);
+  ASSERT_EQ(adds.size(), 1u);  // the corner; the centre 0.1 s short; the free cell no candidate
+  EXPECT_EQ(adds[0], (CellChange{corner, CellChangeKind::kAdded}));
+  EXPECT_TRUE(PlanHeldConfirmations({{corner}, {10.0}, {10.0 + gap}}, store_.candidates(), options_)
+                  .empty());   // held only after the map that saw it ended
+  options_.confirmations = 1;  // adds at first sight: nothing is a candidate for long
+  EXPECT_TRUE(PlanHeldConfirmations(report, store_.candidates(), options_).empty());
+}
+
+TEST(AggregatorHeldTest, TheHeldCandidatesEnterTheMapAsOneVersion) {
+  using testing::BuildTempMap;
+  const core::OccupancyGrid hall = testing::HallMap();
+  const core::OccupancyGrid with_pallet = testing::HallMap(0.0, {{{15.0, 19.05}, {1.2, 0.8}}});
+  auto aggregator = Aggregator::Create(hall, {});
+  ASSERT_TRUE(aggregator.ok());
+  EXPECT_TRUE(aggregator->ConfirmCandidatesHeld("v1", {{5}, {0.0}, {20.0}}, 21.0)->empty());
+  EXPECT_EQ(aggregator->store().version(), 0u);  // no candidate: nothing changes
+  testing::TempMapSpec spec;
+  spec.start = {13.013, 16.027, 0.0};
+  spec.start_s = 0, spec.end_s = 3, spec.sequence = 1;
+  ASSERT_TRUE(aggregator->Submit(BuildTempMap(with_pallet, spec), 3).value().accepted);
+  const std::vector<int64_t> cells = CandidateCells(aggregator->store().candidates());
+  ASSERT_GT(cells.size(), 20u);  // the faces the vehicle saw, candidates after one map
+  const uint64_t version = aggregator->store().version();
+  const HeldReport held{cells, std::vector<double>(cells.size(), 1.0),
+                        std::vector<double>(cells.size(), 12.0)};
+  auto added = aggregator->ConfirmCandidatesHeld("v1", held, 12.5);
+  ASSERT_TRUE(added.ok()) << added.status().ToString();
+  EXPECT_EQ(*added, cells);
+  EXPECT_EQ(aggregator->store().version(), version + 1);
+  EXPECT_TRUE(aggregator->store().candidates().empty());
+  for (int64_t c : cells) EXPECT_TRUE(aggregator->store().semi_static()[c]) << c;
+}
+
 // A person walking back and forth is at the same place again later, and no map need have seen
 // the place free in between: a sighting more than confirm_max_gap_s later starts afresh.
 TEST_F(MergeTest, ACandidateTooOldIsRenewedNotConfirmed) {
@@ -294,6 +343,48 @@ TEST_F(MergeTest, RemovalKeepsCellsWithinTheClearanceOfAHit) {
 }
 
 // The same distance in metres is the same number of cells' worth at every resolution.
+// A map placed 0.15 m off draws the wall it saw as a second wall in front of it, farther
+// than static_clearance_m (0.10 m): its own hits near walls say how far off it is, and it adds
+// nothing that close to a wall. A pallet in the open is still added.
+TEST_F(MergeTest, AMapThatDrawsTheWallsOffAddsNothingThatCloseToThem) {
+  options_.confirmations = 1;
+  const std::vector<uint8_t> walls = WallDistances(store_.static_map(), options_.thresholds);
+  PlacedEvidence e = Evidence();
+  Set(e, 0, 3, 19, 3, kHit);  // the wall of row 0, drawn 3 cells (0.15 m) in front of it
+  Set(e, 8, 10, 10, 12, kHit);
+  EXPECT_EQ(Plan(e, {0, 3}).added, 20 + 9);  // without the guard the second wall is added
+  wall_distance_ = &walls;
+  const MergePlan plan = Plan(e, {0, 3});
+  EXPECT_EQ(plan.added, 9);
+  EXPECT_EQ(plan.dirty, (core::CellWindow{8, 10, 3, 3}));
+  options_.wall_offset_window_m = 0;  // switched off
+  EXPECT_EQ(Plan(e, {0, 3}).added, 20 + 9);
+}
+
+// A map that draws the wall where it is keeps the static clearance: a box 0.15 m in front of
+// the wall is added.
+TEST_F(MergeTest, AMapThatDrawsTheWallsInPlaceAddsWhatIsNearThem) {
+  options_.confirmations = 1;
+  const std::vector<uint8_t> walls = WallDistances(store_.static_map(), options_.thresholds);
+  wall_distance_ = &walls;
+  PlacedEvidence e = Evidence();
+  Set(e, 0, 0, 19, 1, kHit);  // the wall and its face: 40 hits at 0 and 1 cell
+  Set(e, 8, 3, 10, 3, kHit);  // the box's face, 3 cells from the wall
+  EXPECT_EQ(Plan(e, {0, 3}).added, 3);
+}
+
+TEST(MergeOptionsTest, WallDistancesCountCellsToTheNearestOccupiedOne) {
+  core::OccupancyGrid grid(core::GridGeometry(0.05, 6, 4));  // unknown but one wall cell
+  grid.SetState({1, 1}, core::CellState::kOccupied);
+  const std::vector<uint8_t> d = WallDistances(grid, core::OccupancyThresholds{});
+  EXPECT_EQ(d[1 * 6 + 1], 0);
+  EXPECT_EQ(d[2 * 6 + 2], 1);  // diagonal neighbour: Chebyshev
+  EXPECT_EQ(d[3 * 6 + 5], 4);
+  EXPECT_EQ(d[0 * 6 + 0], 1);
+  core::OccupancyGrid empty(core::GridGeometry(0.05, 3, 3));
+  EXPECT_EQ(WallDistances(empty, core::OccupancyThresholds{})[4], 255);  // no wall at all
+}
+
 TEST(MergeOptionsTest, DistancesInMetresBecomeTheNearestWholeCells) {
   EXPECT_EQ(CellsFor(0.10, 0.05), 2);
   EXPECT_EQ(CellsFor(0.10, 0.03), 3);
@@ -331,6 +422,9 @@ TEST(MergeOptionsTest, ValidateNamesTheBadField) {
   o = {};
   o.static_clearance_m = 2.0;  // a value in cells where metres are asked
   EXPECT_NE(o.Validate().message().find("static_clearance_m"), std::string::npos);
+  o = {};
+  o.wall_offset_window_m = -0.1;
+  EXPECT_NE(o.Validate().message().find("wall_offset_window_m"), std::string::npos);
 }
 
 // The required behaviour: a removal clears the pallet but not the wall behind it.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "fleetmap/candidates_free_t.hpp"
+#include "fleetmap/candidates_held_t.hpp"
 #include "fleetmap/map_candidates_t.hpp"
 #include "tests/aggregator_node/node_test_util.h"
 
@@ -43,6 +44,20 @@ std::vector<uint8_t> Report(const std::string& vehicle, const std::vector<int32_
   return Encode(m);
 }
 
+std::vector<uint8_t> HeldBytes(const std::string& vehicle, const std::vector<int32_t>& cells,
+                               double since_s, double until_s) {
+  fleetmap::candidates_held_t m;
+  m.utime = kUtime;
+  m.vehicle_id = vehicle;
+  m.map_version = 1;
+  m.base_utime = lcmtypes::ToUtime(since_s);
+  m.cells = cells;
+  m.num_cells = static_cast<int32_t>(cells.size());
+  m.since_ms.assign(cells.size(), 0);
+  m.until_ms.assign(cells.size(), static_cast<int32_t>((until_s - since_s) * 1e3));
+  return Encode(m);
+}
+
 void Give(AggregatorNode& node, const std::string& channel, const std::vector<uint8_t>& bytes) {
   node.OnMessage(channel, bytes.data(), static_cast<int>(bytes.size()), 2000.0);
 }
@@ -70,6 +85,34 @@ TEST(CandidatesNodeTest, ACandidateAVehicleSawFreeIsDroppedAndTheNewSetSent) {
   EXPECT_EQ(node->aggregator().store().version(), version + 1);
   EXPECT_EQ(out.Count(lcmtypes::kMapDeltaChannel), deltas + 1);  // vehicles follow the version
   EXPECT_EQ(SentCandidates(out).size(), candidates - 2);
+}
+
+// The vehicle that saw the pallet kept its beams on it for 11 s (1002 to 1013 s, around the
+// map that made it a candidate): added in a version of its own, and the vehicles follow.
+TEST(CandidatesNodeTest, ACandidateAVehicleSawHeldIsAddedAndTheNewSetSent) {
+  RecordingPublisher out;
+  auto node = MakeNode(&out);
+  Feed(*node, "v1", TileMessages(PalletMaps()[0], kUtime), 100.0);
+  const std::vector<int32_t> sent = SentCandidates(out);
+  ASSERT_GT(sent.size(), 2u);
+  const uint64_t version = node->aggregator().store().version();
+  const size_t deltas = out.Count(lcmtypes::kMapDeltaChannel);
+  const std::string channel = lcmtypes::CandidatesHeldChannel("v1");
+  Give(*node, channel, HeldBytes("v1", {sent[0], sent[1]}, 1002.0, 1008.0));  // too short
+  EXPECT_EQ(node->aggregator().store().version(), version);
+  Give(*node, channel, HeldBytes("v1", {sent[0], sent[1]}, 1002.0, 1013.0));
+  EXPECT_EQ(node->counters().held_reports, 2);
+  EXPECT_EQ(node->counters().candidates_held_added, 2);
+  EXPECT_EQ(node->aggregator().store().version(), version + 1);
+  EXPECT_TRUE(node->aggregator().store().semi_static()[static_cast<size_t>(sent[0])]);
+  EXPECT_EQ(out.Count(lcmtypes::kMapDeltaChannel), deltas + 1);
+  EXPECT_EQ(SentCandidates(out).size(), sent.size() - 2);
+  // Impossible reports: another vehicle's name, a hold that ends before it begins.
+  Give(*node, channel, HeldBytes("v2", {sent[2]}, 1002.0, 1013.0));
+  EXPECT_EQ(node->counters().wrong_vehicle_id, 1);
+  Give(*node, channel, HeldBytes("v1", {sent[2]}, 1013.0, 1002.0));
+  EXPECT_EQ(node->counters().bad_held, 1);
+  EXPECT_EQ(node->counters().candidates_held_added, 2);
 }
 
 TEST(CandidatesNodeTest, AReportThatCannotBeRightIsRefusedAndCounted) {

@@ -67,7 +67,7 @@ if [ "$loss" = 0 ]; then
     --downlink-url "udpm://239.255.76.68:$((port + 6))?ttl=0" --quiet >"$out/logs/logplayer.txt" 2>&1 &
   aggregator=$!
   sleep 1
-  lcm-logplayer -s 4 -e 'TEMPMAP_.*|MAP_REQUEST|CANDIDATES_FREE_.*' -l "$url" "$out/logs/uplink.lcmlog"
+  lcm-logplayer -s 4 -e 'TEMPMAP_.*|MAP_REQUEST|CANDIDATES_FREE_.*|CANDIDATES_HELD_.*' -l "$url" "$out/logs/uplink.lcmlog"
   sleep 1
   kill -INT "$aggregator"
   wait "$aggregator"

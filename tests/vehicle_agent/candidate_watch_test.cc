@@ -120,11 +120,70 @@ TEST(CandidateWatchTest, ACellNoLongerACandidateIsNotReportedAndOutsideCellsAreI
   EXPECT_TRUE(watch.TakeSeenFree().cells.empty());
 }
 
+// Scans every 0.04 s from `from_s` to `to_s`, a face at the candidate where `there` says so.
+template <typename There>
+void Watch(CandidateWatch& watch, double from_s, double to_s, There there) {
+  for (double t = from_s; t < to_s - 1e-9; t += 0.04) {
+    core::LaserScan s = Scan(t);
+    if (there(t)) Return(s, 0.0, 0.1, 3.0f);
+    watch.Observe(s, kScanner);
+  }
+}
+
+// A pallet this vehicle's beams end at for 12 s: it is held from the first of them, though
+// the aggregator made it a candidate only 5 s later, and reported once after 10 s.
+TEST(CandidateWatchTest, ACandidateHeldLongEnoughIsReportedFromWhenBeamsBeganToEndThere) {
+  CandidateWatchOptions o;
+  o.report_held_s = 10.0;
+  CandidateWatch watch(kGrid, o);
+  Watch(watch, 0.0, 5.0, [](double) { return true; });
+  watch.SetCandidates({Ahead()});
+  Watch(watch, 5.0, 9.9, [](double) { return true; });
+  EXPECT_TRUE(watch.TakeHeld().cells.empty());
+  Watch(watch, 9.9, 12.0, [](double) { return true; });
+  const CandidatesHeld held = watch.TakeHeld();
+  ASSERT_EQ(held.cells, std::vector<int64_t>{Ahead()});
+  EXPECT_NEAR(held.since_s[0], 0.0, 1e-9);
+  EXPECT_GE(held.until_s[0], o.report_held_s);
+  Watch(watch, 12.0, 14.0, [](double) { return true; });
+  EXPECT_TRUE(watch.TakeHeld().cells.empty());  // once
+}
+
+// Beams that passed through the place (a forklift that left and came back), or none that
+// ended there for longer than hold_gap_s (the vehicle looked elsewhere), start the hold again.
+TEST(CandidateWatchTest, APassOrAPauseStartsTheHoldAgain) {
+  CandidateWatchOptions o;
+  o.report_held_s = 10.0;
+  CandidateWatch passed(kGrid, o);
+  passed.SetCandidates({Ahead()});
+  Watch(passed, 0.0, 16.0, [](double t) { return t < 8.0 || t >= 8.5; });
+  EXPECT_TRUE(passed.TakeHeld().cells.empty());
+  CandidateWatch paused(kGrid, o);
+  paused.SetCandidates({Ahead()});
+  Watch(paused, 0.0, 6.0, [](double) { return true; });
+  Watch(paused, 8.0, 16.0, [](double) { return true; });  // no scans from 6 to 8 s
+  EXPECT_TRUE(paused.TakeHeld().cells.empty());
+  Watch(paused, 16.0, 18.2, [](double) { return true; });
+  const CandidatesHeld held = paused.TakeHeld();
+  ASSERT_EQ(held.cells.size(), 1u);
+  EXPECT_NEAR(held.since_s[0], 8.0, 0.05);
+}
+
+TEST(CandidateWatchTest, HoldsAreNotReportedByDefault) {
+  CandidateWatch watch(kGrid, {});
+  watch.SetCandidates({Ahead()});
+  Watch(watch, 0.0, 30.0, [](double) { return true; });
+  EXPECT_TRUE(watch.TakeHeld().cells.empty());
+}
+
 TEST(CandidateWatchTest, ValidateNamesTheBadField) {
   CandidateWatchOptions o;
   EXPECT_TRUE(o.Validate().ok());
   o.min_free_scans = 0;
   EXPECT_NE(o.Validate().ToString().find("min_free_scans"), std::string::npos);
+  o = {};
+  o.hold_gap_s = 0;
+  EXPECT_NE(o.Validate().ToString().find("hold_gap_s"), std::string::npos);
 }
 
 }  // namespace

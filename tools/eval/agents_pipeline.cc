@@ -72,6 +72,7 @@ class AgentsPipeline : public Pipeline {
     }
     if (step.closed_map) Merge(v, *step.closed_map, t);
     ReportSeenFree(v, t);
+    ReportHeld(v, t);
   }
 
   // What a vehicle's beams saw free goes to the aggregator at once (in-process, no link).
@@ -82,6 +83,16 @@ class AgentsPipeline : public Pipeline {
         aggregator_.DropCandidatesSeenFree(world_.scenario().vehicles[v].id, seen, now_s);
     if (!dropped.ok() || dropped->empty()) return;
     run_.RecordSeenFreeDrops(*dropped);
+    ShareCandidates();
+  }
+
+  // ... and so does what they saw held.
+  void ReportHeld(size_t v, double now_s) {
+    const core::HeldCells held = agents_[v]->TakeHeld();
+    if (held.cells.empty()) return;
+    auto added = aggregator_.ConfirmCandidatesHeld(world_.scenario().vehicles[v].id, held, now_s);
+    if (!added.ok() || added->empty()) return;
+    run_.RecordVersion(aggregator_.store().current_map());
     ShareCandidates();
   }
 

@@ -73,8 +73,15 @@ class TruthTempMapPipeline : public Pipeline {
   // The vehicles watch the candidates as the agents do, from where they truly are.
   void WatchCandidates(const sim::ScanEvent& e) {
     vehicle_agent::CandidateWatch& watch = watches_[e.vehicle];
-    if (watch.num_candidates() == 0) return;
-    watch.Observe(e.scan, e.true_scanner_pose);
+    watch.Observe(e.scan, e.true_scanner_pose);  // with none, it remembers where beams end
+    const core::HeldCells held = watch.TakeHeld();
+    if (!held.cells.empty()) {
+      auto added = aggregator_.ConfirmCandidatesHeld(VehicleId(e.vehicle), held, e.scan.stamp_s);
+      if (added.ok() && !added->empty()) {
+        run_.RecordVersion(aggregator_.store().current_map());
+        ShareCandidates();
+      }
+    }
     const core::SeenFreeCells seen = watch.TakeSeenFree();
     if (seen.cells.empty()) return;
     auto dropped = aggregator_.DropCandidatesSeenFree(VehicleId(e.vehicle), seen, e.scan.stamp_s);

@@ -230,13 +230,16 @@ core::Status ReadCandidateWatch(const YamlReader& r, const YAML::Node& n, AgentP
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(
       CheckKeys(r, n, "candidate_watch",
-                {"pass_margin_m", "hit_margin_m", "min_free_scans", "max_range_m", "max_sigma_m"}));
+                {"pass_margin_m", "hit_margin_m", "min_free_scans", "max_range_m", "max_sigma_m",
+                 "hold_gap_s", "report_held_s"}));
   CandidateWatchOptions& w = p.candidate_watch;
   READ_NUMBER(n, "pass_margin_m", "candidate_watch.", w.pass_margin_m);
   READ_NUMBER(n, "hit_margin_m", "candidate_watch.", w.hit_margin_m);
   READ_AS(int, n, "min_free_scans", "candidate_watch.", w.min_free_scans);
   READ_NUMBER(n, "max_range_m", "candidate_watch.", w.max_range_m);
   READ_NUMBER(n, "max_sigma_m", "candidate_watch.", p.candidate_watch_max_sigma_m);
+  READ_NUMBER(n, "hold_gap_s", "candidate_watch.", w.hold_gap_s);
+  READ_NUMBER(n, "report_held_s", "candidate_watch.", w.report_held_s);
   return core::OkStatus();
 }
 

@@ -19,6 +19,7 @@ NamedCounters CollectCounters(const AgentNodeCounters& c, const InputQueue& queu
       {"acks", c.acks},
       {"auth_refused", c.auth_refused},
       {"seen_free_reports", c.seen_free_reports},
+      {"held_reports", c.held_reports},
       {"maps_merged", c.maps_merged},
       {"maps_rejected", c.maps_rejected},
       {"maps_duplicate", c.maps_duplicate},

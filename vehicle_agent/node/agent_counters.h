@@ -31,6 +31,7 @@ struct AgentNodeCounters {
   int64_t publish_failures = 0;
   int64_t auth_refused = 0;       // downlink messages the verifier refused (by cause: auth_*)
   int64_t seen_free_reports = 0;  // CANDIDATES_FREE_<id> messages sent
+  int64_t held_reports = 0;       // CANDIDATES_HELD_<id> messages sent
 };
 
 using NamedCounters = std::vector<std::pair<std::string, int64_t>>;

@@ -1,5 +1,9 @@
 #include "vehicle_agent/node/agent_messages.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "lcmtypes/channels.h"
 #include "lcmtypes/convert.h"
 
 namespace fleetmap::vehicle_agent::node {
@@ -27,6 +31,33 @@ fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t
   r.have_version = have_version;
   r.num_tiles = 0;  // no tile list: the whole map, or the deltas since have_version
   return r;
+}
+
+std::vector<fleetmap::candidates_held_t> HeldMessages(const std::string& vehicle_id,
+                                                      int32_t map_version,
+                                                      const CandidatesHeld& held, int64_t utime) {
+  std::vector<fleetmap::candidates_held_t> out;
+  const size_t n = std::min({held.cells.size(), held.since_s.size(), held.until_s.size()});
+  if (n == 0) return out;
+  const double base_s = *std::min_element(held.since_s.begin(), held.since_s.begin() + n);
+  auto ms = [&](double t_s) { return static_cast<int32_t>(std::lround((t_s - base_s) * 1e3)); };
+  fleetmap::candidates_held_t m;
+  m.utime = utime;
+  m.vehicle_id = vehicle_id;
+  m.map_version = map_version;
+  m.base_utime = lcmtypes::ToUtime(base_s);  // scan time, as maps carry it
+  for (size_t begin = 0; begin < n; begin += lcmtypes::kMaxHeldCellsPerMessage) {
+    const size_t end = std::min(n, begin + size_t{lcmtypes::kMaxHeldCellsPerMessage});
+    m.cells.clear(), m.since_ms.clear(), m.until_ms.clear();
+    for (size_t i = begin; i < end; ++i) {
+      m.cells.push_back(static_cast<int32_t>(held.cells[i]));
+      m.since_ms.push_back(ms(held.since_s[i]));
+      m.until_ms.push_back(ms(held.until_s[i]));
+    }
+    m.num_cells = static_cast<int32_t>(m.cells.size());
+    out.push_back(m);
+  }
+  return out;
 }
 
 fleetmap::status_t StatusMessage(const std::string& process, const std::string& software_version,

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "fleetmap/candidates_held_t.hpp"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/map_request_t.hpp"
 #include "fleetmap/status_t.hpp"
@@ -20,6 +21,11 @@ fleetmap::divergence_t DivergenceMessage(const std::string& vehicle_id, double s
 // MAP_REQUEST for the whole map (or the deltas since have_version, -1: none held).
 fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t have_version,
                                           int64_t utime);
+// CANDIDATES_HELD_<id>: the held candidates in messages of at most kMaxHeldCellsPerMessage
+// cells, times as milliseconds after the earliest hold's start.
+std::vector<fleetmap::candidates_held_t> HeldMessages(const std::string& vehicle_id,
+                                                      int32_t map_version,
+                                                      const CandidatesHeld& held, int64_t utime);
 fleetmap::status_t StatusMessage(const std::string& process, const std::string& software_version,
                                  int32_t map_version, const std::string& state,
                                  const NamedCounters& counters, int64_t utime);

@@ -449,7 +449,7 @@ void AgentNode::SendTiles(double now_s, bool all) {
 }
 
 // Collected for half a second: one message, not one per scan, while a vehicle passes a
-// handful of candidates.
+// handful of candidates; so are the candidates it saw held.
 void AgentNode::SendSeenFree(double now_s) {
   constexpr double kSeenFreePeriodS = 0.5;
   if (now_s < next_seen_free_s_) return;
@@ -471,6 +471,12 @@ void AgentNode::SendSeenFree(double now_s) {
     m.num_cells = static_cast<int32_t>(m.cells.size());
     Send(Link::kUplink, channel, m);
     ++counters_.seen_free_reports;
+  }
+  const std::string held_channel = lcmtypes::CandidatesHeldChannel(options_.pipeline.vehicle_id);
+  for (const auto& held : HeldMessages(options_.pipeline.vehicle_id, applied_version_,
+                                       pipeline_.TakeHeld(), Utime(now_s))) {
+    Send(Link::kUplink, held_channel, held);
+    ++counters_.held_reports;
   }
 }
 

@@ -6,7 +6,8 @@
 // Per loop (Tick): a new map version goes to the pipeline without stopping it; queued scans
 // are localized (POSE_<id>, DIVERGENCE_<id>) and closed temporary maps go to the outbox,
 // which sends their tiles (TEMPMAP_<id>) until the aggregator acknowledges them; MAP_REQUEST
-// when the map needs catching up; the candidates the scans saw free (CANDIDATES_FREE_<id>,
+// when the map needs catching up; the candidates the scans saw free or held
+// (CANDIDATES_FREE_<id>, CANDIDATES_HELD_<id>,
 // watching MAP_CANDIDATES); STATUS_agent_<id> every status period. Bad input is
 // counted, logged once per cause, and never stops the node.
 #pragma once
