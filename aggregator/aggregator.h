@@ -129,8 +129,8 @@ class Aggregator {
       : options_(std::move(options)),
         features_(std::move(features)),
         store_(std::move(store)),
-        addable_(AddableCells(store_.static_map(), options_.merge)),
-        wall_distance_(WallDistances(store_.static_map(), options_.merge.thresholds)) {}
+        wall_distance_(WallDistances(store_.static_map(), options_.merge.thresholds)),
+        addable_(AddableCells(store_.static_map(), options_.merge, wall_distance_)) {}
   MergeReport Rejected(const core::TempMap& map, const Assessment& assessment);
   // Commits what a vehicle's report of candidates justifies, as a version of its own (no
   // temporary map: kSeenFreeSequence); returns the cells changed.
@@ -147,8 +147,8 @@ class Aggregator {
   AggregatorOptions options_;
   StaticMapFeatures features_;
   CurrentMapStore store_;
-  std::vector<uint8_t> addable_;        // AddableCells of the static map
   std::vector<uint8_t> wall_distance_;  // WallDistances of the static map
+  std::vector<uint8_t> addable_;        // AddableCells of the static map, from them
   std::optional<MapPersistence> persistence_;
   AggregatorStats stats_;
 };

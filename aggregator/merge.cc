@@ -274,21 +274,18 @@ MergeCells MergeCellsFor(const MergeOptions& o, double resolution_m) {
 
 std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
                                   const MergeOptions& options) {
+  return AddableCells(static_map, options, WallDistances(static_map, options.thresholds));
+}
+
+std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
+                                  const MergeOptions& options,
+                                  const std::vector<uint8_t>& wall_distance) {
   const core::TriStateClassifier classify(options.thresholds);
-  const int w = static_map.geometry().width(), h = static_map.geometry().height();
   const int r = CellsFor(options.static_clearance_m, static_map.geometry().resolution_m());
   const std::vector<float>& cells = static_map.cells();
   std::vector<uint8_t> addable(cells.size(), 0);
   for (size_t i = 0; i < cells.size(); ++i)
-    addable[i] = classify(cells[i]) == core::CellState::kFree;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (classify(cells[static_cast<size_t>(y) * w + x]) != core::CellState::kOccupied) continue;
-      for (int ny = std::max(0, y - r); ny <= std::min(h - 1, y + r); ++ny)
-        for (int nx = std::max(0, x - r); nx <= std::min(w - 1, x + r); ++nx)
-          addable[static_cast<size_t>(ny) * w + nx] = 0;
-    }
-  }
+    addable[i] = classify(cells[i]) == core::CellState::kFree && wall_distance[i] > r;
   return addable;
 }
 

@@ -104,6 +104,10 @@ int CellsFor(double distance_m, double resolution_m);
 // static_clearance_m).
 std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
                                   const MergeOptions& options);
+// ... from the map's WallDistances, when they are at hand.
+std::vector<uint8_t> AddableCells(const core::OccupancyGrid& static_map,
+                                  const MergeOptions& options,
+                                  const std::vector<uint8_t>& wall_distance);
 
 // Per static cell: its Chebyshev distance in cells to the nearest occupied static cell, at
 // most 255 (also where there is none).
