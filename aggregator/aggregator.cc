@@ -207,7 +207,9 @@ core::Result<std::vector<int64_t>> Aggregator::DropCandidatesSeenFree(const std:
 core::Result<std::vector<int64_t>> Aggregator::ConfirmCandidatesHeld(const std::string& vehicle_id,
                                                                      const HeldReport& report,
                                                                      double now_s) {
-  std::vector<CellChange> adds = PlanHeldConfirmations(report, store_.candidates(), options_.merge);
+  std::vector<CellChange> adds =
+      PlanHeldConfirmations(report, store_.candidates(), options_.merge, &wall_distance_,
+                            store_.static_map().geometry().resolution_m());
   if (adds.empty()) return std::vector<int64_t>{};
   const auto since = std::min_element(report.since_s.begin(), report.since_s.end());
   const auto until = std::max_element(report.until_s.begin(), report.until_s.end());

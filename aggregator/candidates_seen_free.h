@@ -32,9 +32,13 @@ std::vector<CellChange> PlanCandidateDrops(const SeenFreeReport& report,
 using HeldReport = core::HeldCells;
 
 // The confirmations the report justifies, ascending by cell: cells that are still candidates,
-// held at least confirm_min_gap_s, the hold overlapping the maps that saw them.
+// held at least confirm_min_gap_s, the hold overlapping the maps that saw them, and farther
+// than held_wall_clearance_m from a static wall. `wall_distance`: the static map's
+// WallDistances on a grid of `resolution_m` (null: no wall is near).
 std::vector<CellChange> PlanHeldConfirmations(const HeldReport& report,
                                               const std::map<int64_t, Candidate>& candidates,
-                                              const MergeOptions& options);
+                                              const MergeOptions& options,
+                                              const std::vector<uint8_t>* wall_distance = nullptr,
+                                              double resolution_m = 0.05);
 
 }  // namespace fleetmap::aggregator

@@ -245,6 +245,8 @@ core::Status MergeOptions::Validate() const {
     return core::InvalidArgument("merge.static_clearance_m must be in [0, 0.5] m");
   if (!(wall_offset_window_m >= 0 && wall_offset_window_m <= 0.5))
     return core::InvalidArgument("merge.wall_offset_window_m must be in [0, 0.5] m");
+  if (!(held_wall_clearance_m >= 0 && held_wall_clearance_m <= 0.5))
+    return core::InvalidArgument("merge.held_wall_clearance_m must be in [0, 0.5] m");
   if (min_occupied_neighbours < 0 || min_occupied_neighbours > 8)
     return core::InvalidArgument("merge.min_occupied_neighbours must be in [0, 8]");
   if (!(removal_clearance_m >= 0 && removal_clearance_m <= 0.5))

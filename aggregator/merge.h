@@ -47,6 +47,12 @@ struct MergeOptions {
   // nothing within d of a static wall either (never less than static_clearance_m). 0 switches
   // this off; at most 0.5 m.
   double wall_offset_window_m = 0.3;
+  // A candidate a vehicle reports held (its beams kept ending there, CANDIDATES_HELD_<id>)
+  // is not added when it lies this close (Chebyshev, metres) to a static wall: beams that end
+  // on the wall end within the vehicle's hit margin (0.16 m) of the cells in front of it, so a
+  // candidate drawn there by a temporary map placed a little off is held by the wall itself.
+  // 0..0.5 m; such a candidate can still be confirmed by a second temporary map.
+  double held_wall_clearance_m = 0.2;
   // An added cell needs this many of its 8 neighbours at add_min_log_odds too, so an
   // isolated hit (a mixed pixel at a depth edge) is no obstacle. 0..8.
   int min_occupied_neighbours = 1;

@@ -63,10 +63,14 @@ CandidatesSeenFree AgentPipeline::TakeSeenFree() {
 
 CandidatesHeld AgentPipeline::TakeHeld() { return watch_ ? watch_->TakeHeld() : CandidatesHeld{}; }
 
+bool AgentPipeline::WellLocalized(const core::PoseEstimate& pose) const {
+  const double sigma_m = std::sqrt(std::max(pose.covariance(0, 0), pose.covariance(1, 1)));
+  return sigma_m <= options_.candidate_watch_max_sigma_m;
+}
+
 void AgentPipeline::WatchCandidates(const core::LaserScan& scan, const core::PoseEstimate& pose) {
   if (!watch_) return;  // with no candidates yet it remembers where beams end
-  const double sigma_m = std::sqrt(std::max(pose.covariance(0, 0), pose.covariance(1, 1)));
-  if (!(sigma_m <= options_.candidate_watch_max_sigma_m)) return;
+  if (!WellLocalized(pose)) return;
   watch_->Observe(scan, pose.pose_in_map * options_.scanner_in_base);
 }
 
@@ -82,7 +86,8 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   const LocalizerResult located = localizer_.Update(odom_, scan, options_.scanner_in_base);
   step.pose = located.estimate;
   step.localization = located.stats;
-  step.divergence = divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps);
+  step.divergence = divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps,
+                                       WellLocalized(step.pose));
   // From the localizer's clean odometry: a jump the tracker refused must not tear the
   // temporary map either.
   const core::Pose2 odometry_delta =

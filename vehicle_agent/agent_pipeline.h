@@ -86,6 +86,9 @@ class AgentPipeline {
  private:
   void StartMap(double stamp_s, const core::Pose2& anchor);
   void WatchCandidates(const core::LaserScan& scan, const core::PoseEstimate& pose);
+  // Position sigma within candidate_watch_max_sigma_m: beams may be judged against single
+  // cells, and a map opened at start-up may be anchored.
+  bool WellLocalized(const core::PoseEstimate& pose) const;
 
   AgentPipelineOptions options_;
   Localizer localizer_;

@@ -35,7 +35,8 @@ DivergenceDetector::DivergenceDetector(const DivergenceOptions& options) : optio
   assert(options.Validate().ok());
 }
 
-DivergenceSample DivergenceDetector::Update(double stamp_s, double w_avg, double omega_radps) {
+DivergenceSample DivergenceDetector::Update(double stamp_s, double w_avg, double omega_radps,
+                                            bool localized) {
   if (!std::isfinite(stamp_s) || !std::isfinite(w_avg) || w_avg < 0 || std::isnan(omega_radps))
     return Dropped(stamp_s, w_avg, stats_.dropped_invalid);
   const bool clock_step = has_stamp_ && IsClockStepBack(stamp_s, last_stamp_s_);
@@ -61,7 +62,7 @@ DivergenceSample DivergenceDetector::Update(double stamp_s, double w_avg, double
   s.rotating = std::abs(omega_radps) > options_.rotation_freeze_radps;
   stats_.rotating += s.rotating;
   if (!s.rotating && !first) Average(w_avg);
-  Step(s);
+  Step(s, localized);
   return s;
 }
 
@@ -73,10 +74,12 @@ void DivergenceDetector::Average(double w_avg) {
   ++averaged_;
 }
 
-void DivergenceDetector::Step(DivergenceSample& s) {
+void DivergenceDetector::Step(DivergenceSample& s, bool localized) {
   const bool paper = options_.rule == DivergenceRule::kPaper;
+  const bool start_now = start_pending_ && localized && options_.map_at_start;
+  start_pending_ = start_pending_ && !localized;
   if (!building_) {
-    s.started = paper ? s.d > 0.0 : s.d > options_.start_above;
+    s.started = paper ? s.d > 0.0 : s.d > options_.start_above || start_now;
     if (s.started) started_s_ = s.stamp_s;
   } else {
     const double elapsed_s = s.stamp_s - started_s_;
@@ -107,6 +110,7 @@ void DivergenceDetector::Reset() {
   averaged_ = 0;
   w_slow_ = w_fast_ = 0.0;
   building_ = false;
+  start_pending_ = true;
 }
 
 }  // namespace fleetmap::vehicle_agent

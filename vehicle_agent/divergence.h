@@ -60,6 +60,14 @@ struct DivergenceOptions {
   // people (docs/aggregator.md, "Change detection of the real system").
   double min_duration_s = 20.0;
   double max_duration_s = 60.0;
+  // kHysteresis only: the first sample after start-up (or Reset) taken while the vehicle is
+  // localized opens a temporary map. d compares the scans with their own past, so whatever
+  // is in view from the first scan on (a pallet next to where the vehicle was switched on) is
+  // part of that past and never raises d; the vehicle maps its first min_duration_s instead.
+  // In an unchanged place that costs a few maps' bandwidth and adds nothing. Off by default:
+  // about even across the world suite, more removals found but a worse tail
+  // (docs/experiments/2026-12-05-map-at-start-and-held-walls.md).
+  bool map_at_start = false;
 
   core::Status Validate() const;
 };
@@ -93,8 +101,9 @@ class DivergenceDetector {
   // `options` must pass Validate() (an assert).
   explicit DivergenceDetector(const DivergenceOptions& options);
 
-  // One scan's W_avg at `stamp_s` with the vehicle turning at `omega_radps`.
-  DivergenceSample Update(double stamp_s, double w_avg, double omega_radps);
+  // One scan's W_avg at `stamp_s` with the vehicle turning at `omega_radps`. `localized`:
+  // the pose is good enough to anchor a map (the map at start-up waits for it).
+  DivergenceSample Update(double stamp_s, double w_avg, double omega_radps, bool localized = true);
   // Forgets the averages (e.g. after a global re-localization); a map being built is closed.
   void Reset();
 
@@ -104,7 +113,7 @@ class DivergenceDetector {
 
  private:
   DivergenceSample Dropped(double stamp_s, double w_avg, int64_t& counter);
-  void Step(DivergenceSample& s);
+  void Step(DivergenceSample& s, bool localized);
   void Average(double w_avg);
 
   const DivergenceOptions options_;
@@ -113,6 +122,7 @@ class DivergenceDetector {
   bool has_stamp_ = false;
   double last_stamp_s_ = 0.0;
   bool building_ = false;
+  bool start_pending_ = true;  // map_at_start: no localized sample since start-up or Reset
   double started_s_ = 0.0;
   DivergenceStats stats_;
 };

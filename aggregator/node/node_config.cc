@@ -98,16 +98,18 @@ core::Status RefuseCellKeys(const YamlReader& r, const YAML::Node& n, const std:
 core::Status ReadMerge(const YamlReader& r, const YAML::Node& n, MergeOptions& o) {
   const std::string s = "aggregator.merge";
   FLEETMAP_RETURN_IF_ERROR(RefuseCellKeys(r, n, s));
-  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(
-      r, n, s,
-      {"add_min_log_odds", "remove_max_log_odds", "static_clearance_m", "min_occupied_neighbours",
-       "removal_clearance_m", "confirmations", "confirm_radius_m", "confirm_min_gap_s",
-       "confirm_max_gap_s", "confirm_by_watch", "watch_join_s", "wall_offset_window_m"}));
+  FLEETMAP_RETURN_IF_ERROR(
+      OnlyKeys(r, n, s,
+               {"add_min_log_odds", "remove_max_log_odds", "static_clearance_m",
+                "min_occupied_neighbours", "removal_clearance_m", "confirmations",
+                "confirm_radius_m", "confirm_min_gap_s", "confirm_max_gap_s", "confirm_by_watch",
+                "watch_join_s", "wall_offset_window_m", "held_wall_clearance_m"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "add_min_log_odds", o.add_min_log_odds));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "remove_max_log_odds", o.remove_max_log_odds));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "static_clearance_m", o.static_clearance_m));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "wall_offset_window_m", o.wall_offset_window_m));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "held_wall_clearance_m", o.held_wall_clearance_m));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "min_occupied_neighbours", o.min_occupied_neighbours));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "removal_clearance_m", o.removal_clearance_m));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "confirmations", o.confirmations));

@@ -35,6 +35,7 @@ TEST(AgentConfigTest, TheShippedExampleHoldsTheDefaults) {
   EXPECT_DOUBLE_EQ(dp.stop_below, dd.stop_below);
   EXPECT_DOUBLE_EQ(dp.min_duration_s, dd.min_duration_s);
   EXPECT_DOUBLE_EQ(dp.max_duration_s, dd.max_duration_s);
+  EXPECT_EQ(dp.map_at_start, dd.map_at_start);
   const auto& bp = c->node.pipeline.builder;
   const auto& bd = d.node.pipeline.builder;
   EXPECT_DOUBLE_EQ(bp.mapper.map.size_m, bd.mapper.map.size_m);
@@ -114,6 +115,15 @@ TEST(AgentConfigTest, DefaultsWithOnlyAVehicleId) {
   auto external = ParseAgentConfig("vehicle_id: v7\ninputs: {external_pose: true}\n", "a.yaml");
   ASSERT_TRUE(external.ok());
   EXPECT_EQ(external->node.initial_pose, InitialPoseSource::kFirstExternal);
+}
+
+TEST(AgentConfigTest, TheMapAtStartUpCanBeSwitchedOn) {
+  EXPECT_FALSE(
+      ParseAgentConfig("vehicle_id: v7\n", "a.yaml")->node.pipeline.divergence.map_at_start);
+  auto c = ParseAgentConfig("vehicle_id: v7\ndivergence: {map_at_start: true}\n", "a.yaml");
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_TRUE(c->node.pipeline.divergence.map_at_start);
+  EXPECT_FALSE(ParseAgentConfig("vehicle_id: v7\ndivergence: {map_at_start: 2}\n", "a.yaml").ok());
 }
 
 TEST(AgentConfigTest, MistakesAreErrorsThatNameTheKeyAndLine) {

@@ -201,6 +201,27 @@ TEST_F(MergeTest, ACandidateHeldLongerThanTheGapIsAdded) {
   EXPECT_TRUE(PlanHeldConfirmations(report, store_.candidates(), options_).empty());
 }
 
+// Beams that end on a wall hold the cells in front of it as well: a held candidate within
+// held_wall_clearance_m (0.2 m, 4 cells) of the wall on row 0 is not added, one beyond it is.
+TEST_F(MergeTest, ACandidateHeldNextToAWallIsNotAdded) {
+  PlacedEvidence e = Evidence();
+  Set(e, 8, 3, 10, 3, kHit);  // 3 cells from the wall
+  Set(e, 8, 6, 10, 6, kHit);  // 6 cells
+  Commit(Plan(e, {6, 9}), {6, 9});
+  const int64_t near_wall = 3 * 20 + 9, clear = 6 * 20 + 9;
+  ASSERT_EQ(store_.candidates().count(near_wall), 1u);
+  ASSERT_EQ(store_.candidates().count(clear), 1u);
+  const double gap = options_.confirm_min_gap_s;
+  const HeldReport report{{near_wall, clear}, {6.5, 6.5}, {7 + gap, 7 + gap}};
+  const std::vector<uint8_t> walls = WallDistances(store_.static_map(), options_.thresholds);
+  const std::vector<CellChange> adds =
+      PlanHeldConfirmations(report, store_.candidates(), options_, &walls, 0.05);
+  ASSERT_EQ(adds.size(), 1u);
+  EXPECT_EQ(adds[0].cell, clear);
+  options_.held_wall_clearance_m = 0.1;  // 2 cells: both are clear of it
+  EXPECT_EQ(PlanHeldConfirmations(report, store_.candidates(), options_, &walls, 0.05).size(), 2u);
+}
+
 TEST(AggregatorHeldTest, TheHeldCandidatesEnterTheMapAsOneVersion) {
   using testing::BuildTempMap;
   const core::OccupancyGrid hall = testing::HallMap();
@@ -425,6 +446,9 @@ TEST(MergeOptionsTest, ValidateNamesTheBadField) {
   o = {};
   o.wall_offset_window_m = -0.1;
   EXPECT_NE(o.Validate().message().find("wall_offset_window_m"), std::string::npos);
+  o = MergeOptions();
+  o.held_wall_clearance_m = 0.6;
+  EXPECT_NE(o.Validate().message().find("held_wall_clearance_m"), std::string::npos);
 }
 
 // The required behaviour: a removal clears the pallet but not the wall behind it.

@@ -50,6 +50,7 @@ TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
   EXPECT_EQ(m.remove_max_log_odds, md.remove_max_log_odds);
   EXPECT_EQ(m.static_clearance_m, md.static_clearance_m);
   EXPECT_EQ(m.wall_offset_window_m, md.wall_offset_window_m);
+  EXPECT_EQ(m.held_wall_clearance_m, md.held_wall_clearance_m);
   EXPECT_EQ(m.min_occupied_neighbours, md.min_occupied_neighbours);
   EXPECT_EQ(m.removal_clearance_m, md.removal_clearance_m);
   EXPECT_EQ(m.confirmations, md.confirmations);
@@ -76,7 +77,8 @@ node: {keyframe_period_s: 0, status_period_s: 2.5, max_report_matches: 8}
 assembler: {max_pending_maps: 4, max_tiles: 100}
 aggregator:
   merge: {confirmations: 1, confirm_min_gap_s: 5, confirm_max_gap_s: 40, static_clearance_m: 0.08,
-          confirm_by_watch: true, watch_join_s: 0.5, wall_offset_window_m: 0.2}
+          confirm_by_watch: true, watch_join_s: 0.5, wall_offset_window_m: 0.2,
+          held_wall_clearance_m: 0.15}
   cell_alignment: {use: where_lines_fail, range_m: 0.5, range_deg: 4}
   store: {retained_deltas: 3}
   persistence: {snapshot_every_merges: 7}
@@ -95,6 +97,7 @@ aggregator:
   EXPECT_EQ(c->aggregator.merge.confirm_max_gap_s, 40.0);
   EXPECT_EQ(c->aggregator.merge.static_clearance_m, 0.08);
   EXPECT_EQ(c->aggregator.merge.wall_offset_window_m, 0.2);
+  EXPECT_EQ(c->aggregator.merge.held_wall_clearance_m, 0.15);
   EXPECT_TRUE(c->aggregator.merge.confirm_by_watch);
   EXPECT_EQ(c->aggregator.merge.watch_join_s, 0.5);
   EXPECT_EQ(c->aggregator.cell_alignment.use, CellAlignmentUse::kWhereLinesFail);

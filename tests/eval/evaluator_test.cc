@@ -197,6 +197,16 @@ TEST_F(EvaluatorTest, DetectionLatencyAndFalseTriggers) {
   EXPECT_EQ(r.changes_detected, 1);
   EXPECT_NEAR(r.detection_latency_s.median, 0.4, 0.021);
   EXPECT_EQ(r.false_triggers, 1);
+  // A map open from a vehicle's first sample on (DivergenceOptions::map_at_start) is no
+  // trigger: here the vehicle's samples begin at 12 s, when it had seen no change for 5 s.
+  RunRecord late = run_;
+  for (double t = 12.0; t < 24.0; t += 0.02) {
+    const bool building = t < 12.5 || (t >= b_gone + 0.4 && t < b_gone + 2.0);
+    late.divergence.push_back({"v1", t, 0.5, 0.5, 0.4, building ? 0.2 : 0.0, building});
+  }
+  const EvalReport at_start = Evaluate(*world_, obs, late, options);
+  EXPECT_EQ(at_start.changes_detected, 1);
+  EXPECT_EQ(at_start.false_triggers, 0);
 }
 
 TEST_F(EvaluatorTest, ReportJsonHasTheStableKeys) {

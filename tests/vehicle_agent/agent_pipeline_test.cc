@@ -23,6 +23,17 @@ vehicles:
   - {id: v1, route: [[6.0, 4.0], [24.0, 4.0]], speed_mps: 0.5, scanner_mount: [0.3, 0.0, 0.0]}
 )";
 
+// The same drive with the pallet there from the start, beside the vehicle, left behind.
+constexpr const char* kPalletFromTheStart = R"(
+map: livinglab.yaml
+duration_s: 30
+seed: 11
+objects:
+  - {id: pallet, rect: {center: [6.0, 5.6], size: [1.2, 0.8]}}
+vehicles:
+  - {id: v1, route: [[6.0, 4.0], [24.0, 4.0]], speed_mps: 0.5, scanner_mount: [0.3, 0.0, 0.0]}
+)";
+
 struct DriveResult {
   std::vector<core::TempMap> maps;
   std::vector<AgentStep> steps;
@@ -33,9 +44,10 @@ struct DriveResult {
 // `skip_scan(t)`: scans the agent does not get to (it fell behind); odometry all arrives.
 DriveResult Drive(
     const std::function<bool(double)>& skip_scan = [](double) { return false; },
-    const std::function<void(AgentPipelineOptions&)>& configure = [](AgentPipelineOptions&) {}) {
+    const std::function<void(AgentPipelineOptions&)>& configure = [](AgentPipelineOptions&) {},
+    const char* scenario_text = kScenario) {
   const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
-  const auto scenario = sim::ParseScenario(kScenario, dir + "pipeline_test.yaml").value();
+  const auto scenario = sim::ParseScenario(scenario_text, dir + "pipeline_test.yaml").value();
   auto map = core::LoadMapServerMap(scenario.map_yaml).value();
   const sim::World world = sim::World::Create(scenario, map.grid).value();
   AgentPipelineOptions options;
@@ -44,6 +56,7 @@ DriveResult Drive(
   options.localizer.initial_pose_in_map = world.VehicleStateAt(0, 0).pose;
   options.localizer.initial_sigma_xy_m = 0.05;
   options.localizer.initial_sigma_theta_rad = 0.02;
+  options.divergence.map_at_start = false;  // what d(t) opens (see TheVehicleMapsWhat...)
   configure(options);
   AgentPipeline pipeline(options);
   EXPECT_TRUE(pipeline.SetMap(map.grid, 1).ok());
@@ -102,6 +115,32 @@ TEST(AgentPipelineTest, DetectsThePalletAndMapsItWhereItIs) {
     seen += hit;
   }
   EXPECT_GE(seen, cells - 2);
+}
+
+// A pallet in view from the first scan is part of the past d(t) compares with: d never
+// rises, and only the map every vehicle builds when it starts holds the pallet.
+TEST(AgentPipelineTest, TheVehicleMapsWhatIsInViewWhenItStarts) {
+  for (const bool at_start : {false, true}) {
+    const DriveResult run =
+        Drive([](double) { return false; },
+              [&](AgentPipelineOptions& o) { o.divergence.map_at_start = at_start; },
+              kPalletFromTheStart);
+    ASSERT_FALSE(run.steps.empty());
+    EXPECT_EQ(run.steps.front().divergence.started, at_start);
+    int pallet_cells = 0;  // the near face, y = 5.2 m
+    for (const core::TempMap& m : run.maps) {
+      const core::GridGeometry placed = m.PlacedGeometry();
+      for (double x = 5.5; x <= 6.5; x += 0.05) {
+        const core::CellIndex c = placed.WorldToCell({x, 5.225});
+        pallet_cells += placed.Contains(c) && m.grid.state(c) == core::CellState::kOccupied;
+      }
+    }
+    if (at_start) {
+      EXPECT_GE(pallet_cells, 10);
+    } else {
+      EXPECT_EQ(pallet_cells, 0) << run.maps.size() << " maps";
+    }
+  }
 }
 
 TEST(AgentPipelineTest, ScansSkippedForSecondsLoseNoMotion) {

@@ -13,6 +13,13 @@ using sim_testing::RunVehicle;
 using sim_testing::SimRun;
 using sim_testing::Starts;
 
+// What d opens, whatever the default of the map at start-up (tested below).
+RunOptions DivergenceAlone() {
+  RunOptions o;
+  o.divergence.map_at_start = false;
+  return o;
+}
+
 // One pallet put down beside the aisle, about 5 m ahead of the vehicle, while it drives.
 std::string NewPalletScenario(const std::string& route, const std::string& pallet_rect,
                               double appear_s) {
@@ -32,7 +39,7 @@ TEST(DivergenceSimTest, OpensATemporaryMapWithinASecondOfANewPalletComingIntoVie
   for (const auto& c : cases) {
     const double appear_s = std::stod(c[2]);
     const sim::World world = sim_testing::MakeWorld(NewPalletScenario(c[0], c[1], appear_s));
-    const SimRun run = RunVehicle(world, RunOptions());
+    const SimRun run = RunVehicle(world, DivergenceAlone());
     const double seen_s = run.seen[0].appear_seen_s;  // the first beam on the pallet
     ASSERT_FALSE(std::isnan(seen_s)) << c[1] << " never seen";
     EXPECT_NEAR(seen_s, appear_s, 0.05) << c[1] << " not in view when it appeared";
@@ -50,6 +57,7 @@ int64_t StartsAtTenPercent(const SimRun& run) {
   o.start_above = 0.1;
   o.stop_below = 0.05;
   o.min_duration_s = 2.0;
+  o.map_at_start = false;
   DivergenceDetector detector(o);
   for (const auto& r : run.scans) detector.Update(r.stamp_s, r.stats.w_avg, r.omega_radps);
   return detector.stats().starts;
@@ -69,7 +77,7 @@ vehicles:
 
 TEST(DivergenceSimTest, StaysQuietInAnUnchangedHallForFiveMinutes) {
   const sim::World world = sim_testing::MakeWorld(kUnchangedHall);
-  const SimRun run = RunVehicle(world, RunOptions());
+  const SimRun run = RunVehicle(world, DivergenceAlone());
   ASSERT_GE(run.scans.back().stamp_s, 299.0);
   // The defaults (0.05 / 0.025, chosen for the merge's sake) may open a rare false map;
   // hysteresis at 0.1 / 0.05 on the same W_avg opens none.
@@ -82,6 +90,15 @@ TEST(DivergenceSimTest, StaysQuietInAnUnchangedHallForFiveMinutes) {
   DivergenceDetector detector(paper);
   for (const auto& r : run.scans) detector.Update(r.stamp_s, r.stats.w_avg, r.omega_radps);
   EXPECT_GT(detector.stats().starts, 10);
+  // With map_at_start the vehicle also maps its first min_duration_s: at most one map more,
+  // opened by the first scan.
+  RunOptions at_start;
+  at_start.divergence.map_at_start = true;
+  const SimRun mapped = RunVehicle(world, at_start);
+  const std::vector<double> starts = Starts(mapped);
+  ASSERT_FALSE(starts.empty());
+  EXPECT_EQ(starts.front(), mapped.scans.front().stamp_s);
+  EXPECT_LE(mapped.divergence.starts, run.divergence.starts + 1);
 }
 
 // A zigzag through the unchanged hall: about 8 turns in place of 50 degrees or more, at
@@ -99,7 +116,7 @@ vehicles:
 
 TEST(DivergenceSimTest, TurningInAnUnchangedHallOpensNoMap) {
   const sim::World world = sim_testing::MakeWorld(kZigzag);
-  const SimRun run = RunVehicle(world, RunOptions());
+  const SimRun run = RunVehicle(world, DivergenceAlone());
   EXPECT_GT(run.divergence.rotating, 300);  // the turns happened, and were frozen
   EXPECT_LE(run.divergence.starts, 3);      // the defaults: a rare false map (see above)
   EXPECT_EQ(StartsAtTenPercent(run), 0);

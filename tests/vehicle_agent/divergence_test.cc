@@ -73,7 +73,8 @@ TEST(DivergenceTest, WarmUpStartsFromTheRunningMean) {
 TEST(DivergenceTest, HysteresisNeedsAClearDivergenceAndHoldsTheMap) {
   DivergenceOptions o;
   o.warm_up = false;
-  o.start_above = 0.1;  // the mechanism, at thresholds apart from the defaults' 0.05 / 0.025
+  o.map_at_start = false;  // the rule alone (below: the map at start-up)
+  o.start_above = 0.1;     // the mechanism, at thresholds apart from the defaults' 0.05 / 0.025
   o.stop_below = 0.05;
   o.min_duration_s = 2.0;
   DivergenceDetector detector(o);
@@ -97,10 +98,40 @@ TEST(DivergenceTest, HysteresisNeedsAClearDivergenceAndHoldsTheMap) {
   EXPECT_NEAR(stop.stamp_s - started_s, o.min_duration_s, 2 * kScan_s);
 }
 
+// Whatever is in view from the first scan on is part of the past d compares with: the first
+// sample opens a map that lasts min_duration_s, and after Reset the first localized one.
+TEST(DivergenceTest, TheFirstSampleOpensAMapThatLastsTheMinimumDuration) {
+  for (const bool at_start : {true, false}) {
+    DivergenceOptions o;
+    o.map_at_start = at_start;
+    o.min_duration_s = 2.0;
+    DivergenceDetector detector(o);
+    const DivergenceSample first = detector.Update(0.0, 1.0, 0.0);
+    EXPECT_EQ(first.started, at_start);
+    EXPECT_EQ(first.building, at_start);
+    double t = 0.0, stopped_s = -1.0;
+    for (int i = 1; i < 150; ++i) {  // 6 s of scans that fit as well as the first
+      t = i * kScan_s;
+      if (detector.Update(t, 1.0, 0.0).stopped) stopped_s = t;
+    }
+    EXPECT_EQ(detector.stats().starts, at_start ? 1 : 0);
+    if (at_start) {
+      EXPECT_NEAR(stopped_s, o.min_duration_s, 2 * kScan_s);
+    }
+    // After a reset (a global re-localization) it waits until the vehicle is localized.
+    detector.Reset();
+    EXPECT_FALSE(detector.Update(t + kScan_s, 1.0, 0.0, /*localized=*/false).started);
+    EXPECT_FALSE(detector.Update(t + 2 * kScan_s, 1.0, 0.0, false).building);
+    EXPECT_EQ(detector.Update(t + 3 * kScan_s, 1.0, 0.0, true).started, at_start);
+    EXPECT_FALSE(detector.Update(t + 4 * kScan_s, 1.0, 0.0, true).started);
+  }
+}
+
 TEST(DivergenceTest, HysteresisSplitsAVeryLongChangeAtMaxDuration) {
   DivergenceOptions o;
   o.warm_up = false;
-  o.alpha_slow = 0.0;      // the long-term average never absorbs the change
+  o.alpha_slow = 0.0;  // the long-term average never absorbs the change
+  o.map_at_start = false;
   o.min_duration_s = 2.0;  // Validate(): at most max_duration_s (the default is 20 s)
   o.max_duration_s = 4.0;
   ASSERT_TRUE(o.Validate().ok());
@@ -119,6 +150,7 @@ TEST(DivergenceTest, DoesNotUpdateWhileRotating) {
   for (const bool freeze : {true, false}) {
     DivergenceOptions o;
     o.rotation_freeze_radps = freeze ? 0.1 : 1e9;
+    o.map_at_start = false;
     DivergenceDetector detector(o);
     double t = 0.0;
     for (; t < 5.0; t += kScan_s) detector.Update(t, 1.0, 0.0);
@@ -140,6 +172,7 @@ TEST(DivergenceTest, DoesNotUpdateWhileRotating) {
 TEST(DivergenceTest, AClockSetBackIsANewReferenceAndKeepsTheMapsDuration) {
   DivergenceOptions options;
   options.min_duration_s = 2.0;
+  options.map_at_start = false;
   DivergenceDetector detector{options};
   double t = 100.0;
   for (int i = 0; i < 100; ++i, t += 0.04) detector.Update(t, 1.0, 0.0);

@@ -41,7 +41,8 @@ void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m,
 }
 
 // Per vehicle: the times at which it started a temporary map (d rose above 0), and whether
-// it was building at a given time.
+// it was building at a given time. The map open from a vehicle's first sample on is the one
+// every vehicle builds at start-up (DivergenceOptions::map_at_start), not a trigger.
 struct Triggers {
   std::vector<double> starts;
   std::vector<std::pair<double, bool>> samples;  // (t, building)
@@ -51,7 +52,7 @@ std::map<std::string, Triggers> CollectTriggers(const std::vector<DivergenceSamp
   std::map<std::string, Triggers> by_vehicle;
   for (const DivergenceSample& s : samples) {
     Triggers& t = by_vehicle[s.vehicle_id];
-    if (s.building && (t.samples.empty() || !t.samples.back().second)) t.starts.push_back(s.t_s);
+    if (s.building && !t.samples.empty() && !t.samples.back().second) t.starts.push_back(s.t_s);
     t.samples.emplace_back(s.t_s, s.building);
   }
   return by_vehicle;

@@ -198,7 +198,7 @@ core::Status ReadDivergence(const YamlReader& r, const YAML::Node& n, Divergence
   FLEETMAP_RETURN_IF_ERROR(
       CheckKeys(r, n, "divergence",
                 {"rule", "alpha_slow", "alpha_fast", "start_above", "stop_below", "min_duration_s",
-                 "max_duration_s", "rotation_freeze_radps"}));
+                 "max_duration_s", "rotation_freeze_radps", "map_at_start"}));
   FLEETMAP_RETURN_IF_ERROR(ReadChoice<DivergenceRule>(
       r, n, "rule", "divergence.rule",
       {{"hysteresis", DivergenceRule::kHysteresis}, {"paper", DivergenceRule::kPaper}}, d.rule));
@@ -209,6 +209,7 @@ core::Status ReadDivergence(const YamlReader& r, const YAML::Node& n, Divergence
   READ_NUMBER(n, "min_duration_s", "divergence.", d.min_duration_s);
   READ_NUMBER(n, "max_duration_s", "divergence.", d.max_duration_s);
   READ_NUMBER(n, "rotation_freeze_radps", "divergence.", d.rotation_freeze_radps);
+  READ_AS(bool, n, "map_at_start", "divergence.", d.map_at_start);
   return core::OkStatus();
 }
 
