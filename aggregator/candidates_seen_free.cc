@@ -33,7 +33,7 @@ std::vector<CellChange> PlanHeldConfirmations(const HeldReport& report,
   std::vector<CellChange> adds;
   if (options.confirmations < 2) return adds;
   // A wall distance of d cells: the nearest wall cell's centre lies d cells away.
-  const int clearance = CellsFor(options.held_wall_clearance_m, resolution_m);
+  const int clearance = wall_distance ? CellsFor(options.held_wall_clearance_m, resolution_m) : 0;
   for (size_t i = 0;
        i < report.cells.size() && i < report.since_s.size() && i < report.until_s.size(); ++i) {
     const auto it = candidates.find(report.cells[i]);

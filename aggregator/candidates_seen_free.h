@@ -38,7 +38,7 @@ using HeldReport = core::HeldCells;
 std::vector<CellChange> PlanHeldConfirmations(const HeldReport& report,
                                               const std::map<int64_t, Candidate>& candidates,
                                               const MergeOptions& options,
-                                              const std::vector<uint8_t>* wall_distance = nullptr,
-                                              double resolution_m = 0.05);
+                                              const std::vector<uint8_t>* wall_distance,
+                                              double resolution_m);
 
 }  // namespace fleetmap::aggregator

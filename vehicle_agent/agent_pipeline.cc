@@ -70,7 +70,6 @@ bool AgentPipeline::WellLocalized(const core::PoseEstimate& pose) const {
 
 void AgentPipeline::WatchCandidates(const core::LaserScan& scan, const core::PoseEstimate& pose) {
   if (!watch_) return;  // with no candidates yet it remembers where beams end
-  if (!WellLocalized(pose)) return;
   watch_->Observe(scan, pose.pose_in_map * options_.scanner_in_base);
 }
 
@@ -86,8 +85,9 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   const LocalizerResult located = localizer_.Update(odom_, scan, options_.scanner_in_base);
   step.pose = located.estimate;
   step.localization = located.stats;
-  step.divergence = divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps,
-                                       WellLocalized(step.pose));
+  const bool well_localized = WellLocalized(step.pose);
+  step.divergence =
+      divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps, well_localized);
   // From the localizer's clean odometry: a jump the tracker refused must not tear the
   // temporary map either.
   const core::Pose2 odometry_delta =
@@ -122,7 +122,7 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
     step.closed_map = builder_.Close(scan.stamp_s);
   if (step.closed_map) ++counters_.temp_maps_closed;
   step.building = builder_.building();
-  if (valid) WatchCandidates(scan, step.pose);
+  if (valid && well_localized) WatchCandidates(scan, step.pose);
   return step;
 }
 

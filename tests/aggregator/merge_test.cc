@@ -192,13 +192,15 @@ TEST_F(MergeTest, ACandidateHeldLongerThanTheGapIsAdded) {
   const int64_t centre = 9 * 20 + 9, corner = 8 * 20 + 8, free_cell = 5 * 20 + 5;
   const double gap = options_.confirm_min_gap_s;
   HeldReport report{{corner, centre, free_cell}, {6.5, 6.5, 6.5}, {6.5 + gap, 6.4 + gap, 20}};
-  const std::vector<CellChange> adds = PlanHeldConfirmations(report, store_.candidates(), options_);
+  const std::vector<CellChange> adds =
+      PlanHeldConfirmations(report, store_.candidates(), options_, nullptr, 0.05);
   ASSERT_EQ(adds.size(), 1u);  // the corner; the centre 0.1 s short; the free cell no candidate
   EXPECT_EQ(adds[0], (CellChange{corner, CellChangeKind::kAdded}));
-  EXPECT_TRUE(PlanHeldConfirmations({{corner}, {10.0}, {10.0 + gap}}, store_.candidates(), options_)
+  EXPECT_TRUE(PlanHeldConfirmations({{corner}, {10.0}, {10.0 + gap}}, store_.candidates(), options_,
+                                    nullptr, 0.05)
                   .empty());   // held only after the map that saw it ended
   options_.confirmations = 1;  // adds at first sight: nothing is a candidate for long
-  EXPECT_TRUE(PlanHeldConfirmations(report, store_.candidates(), options_).empty());
+  EXPECT_TRUE(PlanHeldConfirmations(report, store_.candidates(), options_, nullptr, 0.05).empty());
 }
 
 // Beams that end on a wall hold the cells in front of it as well: a held candidate within
