@@ -25,11 +25,15 @@ std::atomic<bool> g_stop{false};  // set by SIGINT/SIGTERM: the process edge onl
 constexpr const char* kUsage =
     R"(usage: fleetmap-sick-emulator (--scenario S.yaml [--vehicle N] | --replay FILE [--loop])
        [--port 2112] [--bind 127.0.0.1] [--protocol cola-b|cola-a] [--speed 1.0]
-       [--require-login] [--s300-out PATH [--count N]]
+       [--require-login] [--spin-up 1.0] [--measuring] [--s300-out PATH [--count N]]
   --scenario   scans of vehicle N (default 0) of a simulated scenario
   --replay     scans of a recording: .pcapng, .pcapng.json or pysicktim .dat
+  --spin-up    seconds from sMN LMCstartmeas to the first scan, as a real device spins up
+  --measuring  measure from the start (no LMCstartmeas needed; Run still ends a login)
   --s300-out   instead of TCP, write N (default 100) S300 telegrams to PATH (file or tty)
-Serves one client at a time until SIGINT/SIGTERM.
+Like a real scanner it sends scans only after sMN LMCstartmeas (and sMN Run after a login),
+and serves one client at a time (a second connection is closed at once), until
+SIGINT/SIGTERM.
 )";
 
 struct Args {
@@ -71,6 +75,10 @@ bool Parse(int argc, char** argv, Args& a) {
       take(ParseNumber(value(), k), a.emulator.speed_factor);
     else if (k == "--require-login")
       a.emulator.require_login = true;
+    else if (k == "--spin-up")
+      take(ParseNumber(value(), k), a.emulator.spin_up_s);
+    else if (k == "--measuring")
+      a.emulator.measuring_at_power_up = true;
     else if (k == "--s300-out")
       a.s300_out = value();
     else if (k == "--count")

@@ -39,6 +39,24 @@ std::string ScanStreamRequest(ColaProtocol protocol, bool start) {
 }
 
 std::string ScanPollRequest() { return "sRN LMDscandata"; }
+std::string StartMeasurementRequest() { return "sMN LMCstartmeas"; }
+std::string StopMeasurementRequest() { return "sMN LMCstopmeas"; }
+std::string RunRequest() { return "sMN Run"; }
+std::string DeviceStateRequest() { return "sRN SCdevicestate"; }
+
+const char* DeviceStateName(DeviceState state) {
+  switch (state) {
+    case DeviceState::kBusy:
+      return "busy";
+    case DeviceState::kReady:
+      return "ready";
+    case DeviceState::kError:
+      return "error";
+    case DeviceState::kUnknown:
+      break;
+  }
+  return "unknown";
+}
 
 std::string ErrorReply(ColaProtocol protocol, uint8_t code) {
   std::string out = "sFA";

@@ -1,8 +1,12 @@
 // The request telegrams the driver sends and the replies it understands (SICK telegram
-// listing): login with SetAccessMode, start and stop of streaming, single poll.
+// listing): login with SetAccessMode, start of the measurement, return to run mode, start and
+// stop of streaming, single poll, device state.
 //   sMN SetAccessMode <level> <password hash>   ->  sAN SetAccessMode <1 ok | 0 refused>
+//   sMN LMCstartmeas / LMCstopmeas             ->  sAN LMCstartmeas <0 ok | error code>
+//   sMN Run                                    ->  sAN Run <1 ok | 0 refused>
 //   sEN LMDscandata 1 / 0                      ->  sEA LMDscandata 1 / 0, then sSN scans
 //   sRN LMDscandata                            ->  sRA LMDscandata <scan>
+//   sRN SCdevicestate                          ->  sRA SCdevicestate <0 busy | 1 ready | 2 error>
 //   any refused request                        ->  sFA <error code>
 #pragma once
 
@@ -24,6 +28,14 @@ std::string SetAccessModeRequest(ColaProtocol protocol, uint8_t level = kAuthori
                                  uint32_t password_hash = kAuthorizedClientPasswordHash);
 std::string ScanStreamRequest(ColaProtocol protocol, bool start);  // sEN LMDscandata 1/0
 std::string ScanPollRequest();                                     // sRN LMDscandata
+std::string StartMeasurementRequest();                             // sMN LMCstartmeas
+std::string StopMeasurementRequest();                              // sMN LMCstopmeas
+std::string RunRequest();                                          // sMN Run
+std::string DeviceStateRequest();                                  // sRN SCdevicestate
+
+// SCdevicestate values.
+enum class DeviceState : int { kUnknown = -1, kBusy = 0, kReady = 1, kError = 2 };
+const char* DeviceStateName(DeviceState state);
 
 // Replies with one small numeric argument ("sAN SetAccessMode 1", "sEA LMDscandata 0").
 std::string SmallReply(ColaProtocol protocol, std::string_view type, std::string_view name,

@@ -7,6 +7,7 @@
 
 #include "drivers/sick/commands.h"
 #include "drivers/sick/scan_telegram_codec.h"
+#include "drivers/sick/start_sequence.h"
 
 namespace fleetmap::drivers::sick {
 namespace {
@@ -14,6 +15,10 @@ namespace {
 double SteadyNowS() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+
+// While a device spins up, its state is asked this often (the answer goes into the stats and
+// into the reason given when no scan came).
+constexpr double kDeviceStateQueryPeriodS = 1.0;
 
 TelegramSplitterOptions SplitterOptions(const ScannerClientOptions& o) {
   TelegramSplitterOptions s;
@@ -33,6 +38,9 @@ core::Status ScannerClientOptions::Validate() const {
   if (port <= 0 || port > 65535) return core::InvalidArgument("scanner_client.port out of range");
   if (!(connect_timeout_s > 0.0)) {
     return core::InvalidArgument("scanner_client.connect_timeout_s must be positive");
+  }
+  if (!(first_scan_timeout_s > 0.0)) {
+    return core::InvalidArgument("scanner_client.first_scan_timeout_s must be positive");
   }
   if (!(silence_timeout_s > 0.0)) {
     return core::InvalidArgument("scanner_client.silence_timeout_s must be positive");
@@ -68,19 +76,29 @@ core::Status ScannerClient::ConnectAndStart() {
   core::Result<TcpConnection> c =
       TcpConnection::Connect(options_.host, options_.port, options_.connect_timeout_s);
   if (!c.ok()) return c.status();
-  std::string request;
-  if (options_.login)
-    request += FrameTelegram(options_.protocol, SetAccessModeRequest(options_.protocol));
-  if (options_.streaming) {
-    request += FrameTelegram(options_.protocol, ScanStreamRequest(options_.protocol, true));
-  }
-  if (!request.empty()) {
-    FLEETMAP_RETURN_IF_ERROR(c->WriteAll(request, options_.connect_timeout_s));
+  splitter_.Reset();
+  StartSequenceOptions start;
+  start.protocol = options_.protocol;
+  start.login = options_.login;
+  start.start_measurement = options_.start_measurement;
+  start.streaming = options_.streaming;
+  start.reply_timeout_s = options_.connect_timeout_s;
+  const StartSequenceResult started = RunStartSequence(*c, splitter_, start);
+  stats_.error_replies += started.error_replies;
+  stats_.login_refused += started.login_refused ? 1 : 0;
+  stats_.other_telegrams += started.other_telegrams;
+  stats_.start_refusals += started.refused.size();
+  if (!started.status.ok()) return started.status;
+  if (!started.refused.empty()) {
+    last_error_ = core::FailedPrecondition("scanner " + started.refused.front());
   }
   connection_.emplace(std::move(c).value());
-  splitter_.Reset();
   poll_outstanding_ = false;
-  last_bytes_s_ = SteadyNowS();
+  connected_s_ = SteadyNowS();
+  last_scan_s_ = -1.0;
+  next_state_query_s_ = connected_s_;
+  garbage_at_last_scan_ = splitter_.stats().garbage_bytes;
+  stats_.device_state = DeviceState::kUnknown;
   ++stats_.connects;
   return core::OkStatus();
 }
@@ -115,6 +133,8 @@ std::optional<ReceivedScan> ScannerClient::Handle(const std::string& payload) {
     device_clock_.Map(scan.telegram.time_of_transmission_us, scan.host_receive_s);
     scan.stamp_s = device_clock_.ToHost(scan.telegram.time_since_startup_us);
     poll_outstanding_ = false;
+    last_scan_s_ = SteadyNowS();
+    garbage_at_last_scan_ = splitter_.stats().garbage_bytes;
     ++stats_.scans;
     backoff_s_ = options_.reconnect_backoff_initial_s;
     return scan;
@@ -124,6 +144,8 @@ std::optional<ReceivedScan> ScannerClient::Handle(const std::string& payload) {
     ++stats_.error_replies;
     last_error_ = core::FailedPrecondition("scanner refused a request (sFA " +
                                            std::to_string(c->value) + ")");
+  } else if (c.ok() && c->type == "sRA" && c->name == "SCdevicestate" && c->has_value) {
+    stats_.device_state = c->value <= 2 ? static_cast<DeviceState>(c->value) : DeviceState::kError;
   } else if (c.ok() && c->type == "sAN" && c->name == "SetAccessMode" && c->value == 0) {
     ++stats_.login_refused;
     last_error_ = core::FailedPrecondition("scanner refused the login (SetAccessMode)");
@@ -140,21 +162,51 @@ std::optional<ReceivedScan> ScannerClient::TakeBufferedScan() {
   return std::nullopt;
 }
 
-core::Status ScannerClient::ReadOnce(double wait_s) {
+core::Status ScannerClient::SendPendingRequests(double now) {
+  std::string requests;
   if (!options_.streaming && !poll_outstanding_) {
-    FLEETMAP_RETURN_IF_ERROR(connection_->WriteAll(
-        FrameTelegram(options_.protocol, ScanPollRequest()), options_.connect_timeout_s));
+    requests += FrameTelegram(options_.protocol, ScanPollRequest());
     poll_outstanding_ = true;
   }
+  if (last_scan_s_ < 0.0 && now >= next_state_query_s_) {
+    requests += FrameTelegram(options_.protocol, DeviceStateRequest());
+    next_state_query_s_ = now + kDeviceStateQueryPeriodS;
+  }
+  if (requests.empty()) return core::OkStatus();
+  return connection_->WriteAll(requests, options_.connect_timeout_s);
+}
+
+core::Status ScannerClient::ReadOnce(double wait_s) {
+  FLEETMAP_RETURN_IF_ERROR(SendPendingRequests(SteadyNowS()));
+  if (last_scan_s_ < 0.0)
+    wait_s = std::min(wait_s, std::max(0.0, next_state_query_s_ - SteadyNowS()));
   uint8_t buffer[16384];
   core::Result<size_t> n = connection_->Read(buffer, sizeof(buffer), wait_s);
   if (!n.ok()) return n.status();
   if (*n > 0) {
-    last_bytes_s_ = SteadyNowS();
     last_bytes_host_s_ = host_clock_();
     splitter_.Feed(buffer, *n);
   }
   return core::OkStatus();
+}
+
+double ScannerClient::SilenceEnd() const {
+  return last_scan_s_ < 0.0 ? connected_s_ + options_.first_scan_timeout_s
+                            : last_scan_s_ + options_.silence_timeout_s;
+}
+
+core::Status ScannerClient::CheckSilence(double now) const {
+  if (now < SilenceEnd()) return core::OkStatus();
+  const uint64_t garbage = splitter_.stats().garbage_bytes - garbage_at_last_scan_;
+  const std::string bytes =
+      garbage > 0 ? "; " + std::to_string(garbage) + " bytes meanwhile formed no telegram" : "";
+  if (last_scan_s_ < 0.0) {
+    return core::IoError("no scan within " + std::to_string(options_.first_scan_timeout_s) +
+                         " s of connecting (device state " + DeviceStateName(stats_.device_state) +
+                         bytes + ")");
+  }
+  return core::IoError("no valid scan for " + std::to_string(options_.silence_timeout_s) + " s" +
+                       (bytes.empty() ? "" : " (" + bytes.substr(2) + ")"));
 }
 
 core::Result<ReceivedScan> ScannerClient::NextScan(double timeout_s) {
@@ -180,14 +232,12 @@ core::Result<ReceivedScan> ScannerClient::NextScan(double timeout_s) {
       }
       continue;
     }
-    const double silence_end = last_bytes_s_ + options_.silence_timeout_s;
-    if (now >= silence_end) {
+    if (core::Status silent = CheckSilence(now); !silent.ok()) {
       ++stats_.silences;
-      Disconnect(
-          core::IoError("scanner silent for " + std::to_string(options_.silence_timeout_s) + " s"));
+      Disconnect(silent);
       continue;
     }
-    const core::Status s = ReadOnce(std::min(deadline, silence_end) - now);
+    const core::Status s = ReadOnce(std::min(deadline, SilenceEnd()) - now);
     if (!s.ok()) Disconnect(s);
   }
 }

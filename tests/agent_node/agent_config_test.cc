@@ -69,6 +69,8 @@ TEST(AgentConfigTest, TheShippedExampleHoldsTheDefaults) {
   const auto& sd = d.sick.client;
   EXPECT_DOUBLE_EQ(sp.connect_timeout_s, sd.connect_timeout_s);
   EXPECT_DOUBLE_EQ(sp.silence_timeout_s, sd.silence_timeout_s);
+  EXPECT_DOUBLE_EQ(sp.first_scan_timeout_s, sd.first_scan_timeout_s);
+  EXPECT_EQ(sp.start_measurement, sd.start_measurement);
   EXPECT_DOUBLE_EQ(sp.reconnect_backoff_initial_s, sd.reconnect_backoff_initial_s);
   EXPECT_DOUBLE_EQ(sp.reconnect_backoff_max_s, sd.reconnect_backoff_max_s);
   EXPECT_DOUBLE_EQ(c->sick.conversion.range_min_m, d.sick.conversion.range_min_m);

@@ -32,6 +32,7 @@ std::unique_ptr<sickemu::ScannerEmulator> StartScanner(const sim::World& world, 
   o.port = port;
   o.protocol = drivers::sick::ColaProtocol::kColaB;
   o.require_login = true;
+  o.spin_up_s = 0.2;
   auto emulator = std::make_unique<sickemu::ScannerEmulator>(o, std::move(source).value());
   const core::Status started = emulator->Start();
   EXPECT_TRUE(started.ok()) << started.ToString();
@@ -83,6 +84,20 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The emulator's scanner on loopback, with short timeouts and backoff.
+SickInputOptions QuickInput(int port) {
+  SickInputOptions o;
+  o.client.host = "127.0.0.1";
+  o.client.port = port;
+  o.client.protocol = drivers::sick::ColaProtocol::kColaB;
+  o.client.connect_timeout_s = 0.5;
+  o.client.silence_timeout_s = 0.5;
+  o.client.reconnect_backoff_initial_s = 0.05;
+  o.client.reconnect_backoff_max_s = 0.2;
+  EXPECT_TRUE(o.Validate().ok());
+  return o;
+}
+
 // Scans until `count` arrived; fails the test after a generous deadline (not a timing check).
 int Receive(SickScanInput& input, Feeder& feeder, int count) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -109,17 +124,8 @@ TEST(SickAgentTest, LocalizesFromAScannerOverTcpAndCarriesOnAfterTheScannerResta
   auto node = AgentNode::Create(options, &out, nullptr, world.static_map(), 0.0).value();
   for (const Subscription& s : node->Subscriptions()) EXPECT_EQ(s.link, Link::kDownlink);
 
-  SickInputOptions input_options;
-  input_options.client.host = "127.0.0.1";
-  input_options.client.port = port;
-  input_options.client.protocol = drivers::sick::ColaProtocol::kColaB;
-  input_options.client.connect_timeout_s = 0.5;
-  input_options.client.silence_timeout_s = 0.5;
-  input_options.client.reconnect_backoff_initial_s = 0.05;
-  input_options.client.reconnect_backoff_max_s = 0.2;
-  ASSERT_TRUE(input_options.Validate().ok());
   std::vector<std::string> log;
-  SickScanInput input(input_options,
+  SickScanInput input(QuickInput(port),
                       [&](LogLevel, const std::string& line) { log.push_back(line); });
   Feeder feeder(world, node.get());
 
@@ -144,6 +150,29 @@ TEST(SickAgentTest, LocalizesFromAScannerOverTcpAndCarriesOnAfterTheScannerResta
   ASSERT_GE(log.size(), 3u);
   EXPECT_NE(log[0].find("connected"), std::string::npos);
   EXPECT_NE(log[1].find("lost"), std::string::npos);
+}
+
+// A scanner that never starts measuring (here: the agent told not to send LMCstartmeas) is
+// tried again and again; the log says so once, with the reason, and STATUS counts the rest.
+TEST(SickAgentTest, AScannerThatSendsNoScansIsLoggedOnceAndCounted) {
+  const sim::World world = testing::RoomWorld("[]", 30.0);
+  auto scanner = StartScanner(world, 0, 0);
+  SickInputOptions input_options = QuickInput(scanner->port());
+  input_options.client.start_measurement = false;
+  input_options.client.first_scan_timeout_s = 0.2;
+  std::vector<std::string> log;
+  SickScanInput input(input_options,
+                      [&](LogLevel, const std::string& line) { log.push_back(line); });
+  int64_t silences = 0;
+  for (int i = 0; i < 100 && silences < 3; ++i) {
+    EXPECT_FALSE(input.Next(0.05).has_value());
+    for (const auto& [name, value] : input.Counters())
+      if (name == "scanner_silences") silences = value;
+  }
+  ASSERT_GE(silences, 3);
+  ASSERT_EQ(log.size(), 2u);
+  EXPECT_NE(log[0].find("connected"), std::string::npos) << log[0];
+  EXPECT_NE(log[1].find("no scan within"), std::string::npos) << log[1];
 }
 
 // The TCP connection to the scanner is cut while the scanner keeps running (a

@@ -38,6 +38,7 @@ sickemu::EmulatorOptions EmulatorFor(ColaProtocol protocol) {
   o.protocol = protocol;
   o.require_login = true;
   o.speed_factor = 4.0;
+  o.spin_up_s = 0.6;  // longer than the client's silence timeout
   return o;
 }
 
@@ -59,8 +60,42 @@ TEST_P(EmulatorClientTest, StreamsSimulatedScansThroughTheRealDriver) {
   }
   const ScannerClientStats s = client.stats();
   EXPECT_EQ(s.connects, 1u);
+  EXPECT_EQ(s.silences, 0u);  // the spin-up is waited for with the first-scan timeout
   EXPECT_EQ(s.framing.bad_checksums, 0u);
+  EXPECT_EQ(s.device_state, DeviceState::kBusy);  // asked while it spun up
   EXPECT_EQ(emulator.stats().logins.load(), 1u);
+  EXPECT_EQ(emulator.stats().start_requests.load(), 1u);
+  EXPECT_EQ(emulator.stats().run_requests.load(), 1u);
+}
+
+TEST_P(EmulatorClientTest, TheDeviceSendsNothingWithoutItsStartSequence) {
+  sickemu::ScannerEmulator emulator(EmulatorFor(GetParam()), SimulatorSource());
+  ASSERT_TRUE(emulator.Start().ok());
+  ScannerClientOptions o = ClientFor(emulator, GetParam());
+  o.start_measurement = false;  // login and subscribe only
+  o.first_scan_timeout_s = 1.0;
+  ScannerClient client(o);
+  EXPECT_FALSE(client.NextScan(1.5).ok());
+  EXPECT_EQ(emulator.stats().scans_sent.load(), 0u);
+  EXPECT_GE(client.stats().silences, 1u);
+  EXPECT_NE(client.last_error().message().find("of connecting"), std::string::npos)
+      << client.last_error().ToString();
+}
+
+TEST_P(EmulatorClientTest, AFirstScanTimeoutShorterThanTheSpinUpReconnectsAndSaysWhy) {
+  sickemu::ScannerEmulator emulator(EmulatorFor(GetParam()), SimulatorSource());
+  ASSERT_TRUE(emulator.Start().ok());
+  ScannerClientOptions o = ClientFor(emulator, GetParam());
+  o.first_scan_timeout_s = 0.25;
+  ScannerClient client(o);
+  EXPECT_FALSE(client.NextScan(0.3).ok());
+  EXPECT_NE(client.last_error().message().find("device state busy"), std::string::npos)
+      << client.last_error().ToString();
+  // The device goes on spinning up across connections and measures on the next one.
+  ASSERT_TRUE(client.NextScan(5.0).ok());
+  EXPECT_GE(client.stats().silences, 1u);
+  EXPECT_GE(client.stats().connects, 2u);
+  EXPECT_GE(emulator.stats().start_requests.load(), 2u);  // the sequence again on reconnect
 }
 
 TEST_P(EmulatorClientTest, SurvivesSplitWritesGarbageCorruptionAndSilence) {
@@ -99,6 +134,21 @@ TEST_P(EmulatorClientTest, PollingWithSrnGetsOneScanPerRequest) {
   EXPECT_EQ(emulator.stats().scans_sent.load(), 3u);
 }
 
+TEST_P(EmulatorClientTest, ASecondClientIsRefusedWhileOneIsServed) {
+  sickemu::ScannerEmulator emulator(EmulatorFor(GetParam()), SimulatorSource());
+  ASSERT_TRUE(emulator.Start().ok());
+  ScannerClient client(ClientFor(emulator, GetParam()));
+  ASSERT_TRUE(client.NextScan(5.0).ok());
+  core::Result<TcpConnection> second = TcpConnection::Connect("127.0.0.1", emulator.port(), 1.0);
+  ASSERT_TRUE(second.ok()) << second.status().ToString();  // accepted by the kernel ...
+  uint8_t byte = 0;
+  core::Result<size_t> read = second->Read(&byte, 1, 2.0);
+  EXPECT_FALSE(read.ok());  // ... and closed by the device
+  EXPECT_EQ(emulator.stats().refused_connections.load(), 1u);
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(client.NextScan(5.0).ok());
+  EXPECT_EQ(client.stats().connects, 1u);
+}
+
 INSTANTIATE_TEST_SUITE_P(BothProtocols, EmulatorClientTest,
                          ::testing::Values(ColaProtocol::kColaA, ColaProtocol::kColaB));
 
@@ -120,6 +170,28 @@ TEST(EmulatorClientTest, ReplaysARealRecordingUnchanged) {
     EXPECT_EQ(scan->telegram.FindChannel("DIST1")->values, expected.FindChannel("DIST1")->values);
     EXPECT_EQ(scan->telegram.scan_counter, expected.scan_counter);
   }
+}
+
+// SICK's own emulator on its CoLa-A port answers in ASCII but streams binary scans: bytes keep
+// coming and none forms a scan. That is silence too.
+TEST(EmulatorClientTest, BytesThatFormNoScanAreSilence) {
+  sickemu::EmulatorOptions e = EmulatorFor(ColaProtocol::kColaA);
+  e.cola_b_scans = true;
+  e.spin_up_s = 0.0;
+  sickemu::ScannerEmulator emulator(e, SimulatorSource());
+  ASSERT_TRUE(emulator.Start().ok());
+  ScannerClientOptions o = ClientFor(emulator, ColaProtocol::kColaA);
+  o.first_scan_timeout_s = 0.5;
+  ScannerClient client(o);
+  EXPECT_FALSE(client.NextScan(1.5).ok());
+  EXPECT_GT(emulator.stats().scans_sent.load(), 5u);
+  const ScannerClientStats s = client.stats();
+  EXPECT_EQ(s.scans, 0u);
+  EXPECT_GE(s.silences, 1u);
+  EXPECT_GE(s.connects, 2u);
+  EXPECT_GT(s.framing.garbage_bytes, 1000u);
+  EXPECT_NE(client.last_error().message().find("formed no telegram"), std::string::npos)
+      << client.last_error().ToString();
 }
 
 TEST(EmulatorClientTest, ReconnectsWithBackoffWhenTheScannerDisappears) {

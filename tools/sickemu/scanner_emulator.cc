@@ -31,6 +31,7 @@ constexpr double kWriteTimeoutS = 2.0;
 core::Status EmulatorOptions::Validate() const {
   if (port < 0 || port > 65535) return core::InvalidArgument("emulator.port out of range");
   if (!(speed_factor > 0.0)) return core::InvalidArgument("emulator.speed_factor must be positive");
+  if (!(spin_up_s >= 0.0)) return core::InvalidArgument("emulator.spin_up_s must be >= 0");
   return core::OkStatus();
 }
 
@@ -39,7 +40,8 @@ ScannerEmulator::ScannerEmulator(EmulatorOptions options, std::unique_ptr<ScanSo
 
 core::Status ScannerEmulator::Start() {
   FLEETMAP_RETURN_IF_ERROR(options_.Validate());
-  listen_fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  measuring_ = options_.measuring_at_power_up;
+  listen_fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   if (listen_fd_ < 0) return core::IoError(std::string("socket: ") + std::strerror(errno));
   const int one = 1;
   setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
@@ -82,6 +84,25 @@ void ScannerEmulator::AcceptLoop() {
   }
 }
 
+void ScannerEmulator::RefuseWaitingClients() {
+  while (true) {
+    const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd < 0) return;
+    ++stats_.refused_connections;  // counted before the client can see the close
+    close(fd);
+  }
+}
+
+bool ScannerEmulator::Producing(double now) const {
+  return measuring_ && run_mode_ && now >= ready_s_;
+}
+
+bool ScannerEmulator::Reply(TcpConnection& client, const char* type, const char* name,
+                            uint8_t value) {
+  const ColaProtocol p = options_.protocol;
+  return Send(client, FrameTelegram(p, drivers::sick::SmallReply(p, type, name, value)));
+}
+
 bool ScannerEmulator::Send(TcpConnection& client, const std::string& bytes) {
   const size_t piece = options_.max_write_bytes > 0 ? options_.max_write_bytes : bytes.size();
   for (size_t at = 0; at < bytes.size(); at += piece) {
@@ -97,10 +118,11 @@ bool ScannerEmulator::SendScan(TcpConnection& client, const char* type) {
   std::optional<drivers::sick::ScanTelegram> scan = source_->Next();
   if (!scan) return false;  // exhausted: hang up like a scanner switched off
   const uint64_t n = ++stats_.scans_sent;
+  const ColaProtocol framing = options_.cola_b_scans ? ColaProtocol::kColaB : options_.protocol;
   std::string bytes = drivers::sick::FrameTelegram(
-      options_.protocol, drivers::sick::EncodeScanTelegram(*scan, options_.protocol, type));
+      framing, drivers::sick::EncodeScanTelegram(*scan, framing, type));
   if (options_.corrupt_every > 0 && n % options_.corrupt_every == 0) {
-    if (options_.protocol == ColaProtocol::kColaB) {
+    if (framing == ColaProtocol::kColaB) {
       bytes.back() = static_cast<char>(bytes.back() ^ 0x5A);
     } else {
       bytes.resize(bytes.size() / 2);  // cut off, the next STX starts over
@@ -113,27 +135,55 @@ bool ScannerEmulator::SendScan(TcpConnection& client, const char* type) {
 }
 
 bool ScannerEmulator::HandleRequest(TcpConnection& client, const std::string& payload,
-                                    bool& logged_in, bool& streaming) {
+                                    Session& session) {
   ++stats_.requests;
   const ColaProtocol p = options_.protocol;
   core::Result<drivers::sick::ParsedCommand> c = drivers::sick::ParseCommand(payload, p);
   if (!c.ok()) return Send(client, FrameTelegram(p, drivers::sick::ErrorReply(p, 1)));
-  if (c->type == "sMN" && c->name == "SetAccessMode") {
+  const std::string& name = c->name;
+  if (c->type == "sMN" && name == "SetAccessMode") {
     const bool ok = c->value == drivers::sick::kAuthorizedClientLevel &&
                     c->password == drivers::sick::kAuthorizedClientPasswordHash;
-    logged_in |= ok;
-    if (ok) ++stats_.logins;
-    return Send(client, FrameTelegram(p, drivers::sick::SmallReply(p, "sAN", "SetAccessMode", ok)));
+    session.logged_in |= ok;
+    if (ok) {
+      ++stats_.logins;
+      run_mode_ = false;  // the configuration level: no scans until Run
+    }
+    return Reply(client, "sAN", "SetAccessMode", ok);
   }
-  const bool scan_request = c->name == "LMDscandata" && (c->type == "sEN" || c->type == "sRN");
-  if (!scan_request) return Send(client, FrameTelegram(p, drivers::sick::ErrorReply(p, 2)));
-  if (options_.require_login && !logged_in) {
+  if (c->type == "sMN" && name == "Run") {
+    ++stats_.run_requests;
+    run_mode_ = true;
+    return Reply(client, "sAN", "Run", 1);
+  }
+  if (c->type == "sRN" && name == "SCdevicestate") {
+    const bool busy = measuring_ && SteadyNowS() < ready_s_;
+    return Reply(client, "sRA", "SCdevicestate", busy ? 0 : 1);
+  }
+  const bool measurement = c->type == "sMN" && (name == "LMCstartmeas" || name == "LMCstopmeas");
+  const bool scan_request = name == "LMDscandata" && (c->type == "sEN" || c->type == "sRN");
+  if (!measurement && !scan_request) {
+    return Send(client, FrameTelegram(p, drivers::sick::ErrorReply(p, 2)));
+  }
+  if (options_.require_login && !session.logged_in) {
     return Send(client, FrameTelegram(p, drivers::sick::ErrorReply(p, 3)));
   }
-  if (c->type == "sRN") return SendScan(client, "sRA");
-  streaming = c->value == 1;
-  return Send(client,
-              FrameTelegram(p, drivers::sick::SmallReply(p, "sEA", "LMDscandata", streaming)));
+  if (name == "LMCstartmeas") {
+    ++stats_.start_requests;
+    if (!measuring_) ready_s_ = SteadyNowS() + options_.spin_up_s;
+    measuring_ = true;
+    return Reply(client, "sAN", "LMCstartmeas", 0);
+  }
+  if (name == "LMCstopmeas") {
+    measuring_ = false;
+    return Reply(client, "sAN", "LMCstopmeas", 0);
+  }
+  if (c->type == "sRN") {
+    session.poll_pending = true;  // answered once the device measures
+    return true;
+  }
+  session.streaming = c->value == 1;
+  return Reply(client, "sEA", "LMDscandata", session.streaming);
 }
 
 void ScannerEmulator::Serve(TcpConnection& client, bool first) {
@@ -141,7 +191,7 @@ void ScannerEmulator::Serve(TcpConnection& client, bool first) {
   splitter_options.protocol = options_.protocol;
   splitter_options.max_payload_bytes = 4096;
   drivers::sick::TelegramSplitter requests(splitter_options);
-  bool logged_in = false, streaming = false;
+  Session session;
   size_t sent_here = 0;
   const double period_s = source_->period_s() / options_.speed_factor;
   double next_scan_s = SteadyNowS();
@@ -150,18 +200,25 @@ void ScannerEmulator::Serve(TcpConnection& client, bool first) {
     const bool silent =
         first && options_.silent_after_scans > 0 && sent_here >= options_.silent_after_scans;
     const double now = SteadyNowS();
-    if (streaming && !silent && now >= next_scan_s) {
+    const bool producing = Producing(now) && !silent;
+    if (producing && session.poll_pending) {
+      session.poll_pending = false;
+      if (!SendScan(client, "sRA")) return;
+      continue;
+    }
+    if (producing && session.streaming && now >= next_scan_s) {
       if (!SendScan(client, "sSN")) return;
       ++sent_here;
       next_scan_s = std::max(next_scan_s + period_s, now - period_s);
       continue;
     }
-    const double wait = streaming && !silent ? std::min(0.05, next_scan_s - now) : 0.05;
+    const double wait = producing && session.streaming ? std::min(0.05, next_scan_s - now) : 0.05;
     core::Result<size_t> n = client.Read(buffer, sizeof(buffer), wait);
     if (!n.ok()) return;  // the client hung up
+    RefuseWaitingClients();
     requests.Feed(buffer, *n);
     while (std::optional<std::string> payload = requests.Next()) {
-      if (!HandleRequest(client, *payload, logged_in, streaming)) return;
+      if (!HandleRequest(client, *payload, session)) return;
     }
   }
 }

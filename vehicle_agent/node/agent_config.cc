@@ -98,11 +98,11 @@ core::Status ReadInitialPose(const YamlReader& r, const YAML::Node& root, AgentC
 
 core::Status ReadSick(const YamlReader& r, const YAML::Node& n, SickInputOptions& s) {
   if (!n) return core::OkStatus();
-  FLEETMAP_RETURN_IF_ERROR(
-      CheckKeys(r, n, "inputs.sick",
-                {"host", "port", "protocol", "connect_timeout_s", "silence_timeout_s",
-                 "reconnect_backoff_initial_s", "reconnect_backoff_max_s", "login", "streaming",
-                 "range_min_m", "range_max_m", "range_channel", "intensity_channel"}));
+  FLEETMAP_RETURN_IF_ERROR(CheckKeys(
+      r, n, "inputs.sick",
+      {"host", "port", "protocol", "connect_timeout_s", "first_scan_timeout_s", "silence_timeout_s",
+       "reconnect_backoff_initial_s", "reconnect_backoff_max_s", "login", "start_measurement",
+       "streaming", "range_min_m", "range_max_m", "range_channel", "intensity_channel"}));
   drivers::sick::ScannerClientOptions& o = s.client;
   READ_AS(std::string, n, "host", "inputs.sick.", o.host);
   READ_AS(int, n, "port", "inputs.sick.", o.port);
@@ -115,10 +115,12 @@ core::Status ReadSick(const YamlReader& r, const YAML::Node& n, SickInputOptions
     o.protocol = *protocol;
   }
   READ_NUMBER(n, "connect_timeout_s", "inputs.sick.", o.connect_timeout_s);
+  READ_NUMBER(n, "first_scan_timeout_s", "inputs.sick.", o.first_scan_timeout_s);
   READ_NUMBER(n, "silence_timeout_s", "inputs.sick.", o.silence_timeout_s);
   READ_NUMBER(n, "reconnect_backoff_initial_s", "inputs.sick.", o.reconnect_backoff_initial_s);
   READ_NUMBER(n, "reconnect_backoff_max_s", "inputs.sick.", o.reconnect_backoff_max_s);
   READ_AS(bool, n, "login", "inputs.sick.", o.login);
+  READ_AS(bool, n, "start_measurement", "inputs.sick.", o.start_measurement);
   READ_AS(bool, n, "streaming", "inputs.sick.", o.streaming);
   READ_NUMBER(n, "range_min_m", "inputs.sick.", s.conversion.range_min_m);
   READ_NUMBER(n, "range_max_m", "inputs.sick.", s.conversion.range_max_m);

@@ -15,23 +15,33 @@ std::string SickScanInput::endpoint() const {
          drivers::sick::ColaProtocolName(options_.client.protocol) + ")";
 }
 
-void SickScanInput::LogConnection(const core::Status& last_error) {
-  const bool now = client_.connected();
-  if (now == was_connected_) return;
-  was_connected_ = now;
-  if (!log_) return;
-  if (now) {
-    log_(LogLevel::kInfo, "scanner connected: " + endpoint());
-  } else {
-    log_(LogLevel::kWarning, "scanner " + endpoint() + " lost (" + last_error.ToString() +
-                                 "): reconnecting with backoff");
-  }
+void SickScanInput::LogConnection() {
+  const drivers::sick::ScannerClientStats s = client_.stats();
+  const uint64_t losses = s.disconnects + s.connect_failures;
+  const bool lost = losses > seen_losses_;
+  const bool connected = s.connects > seen_connects_;
+  losses_since_scan_ += losses - seen_losses_;
+  seen_losses_ = losses;
+  seen_connects_ = s.connects;
+  if (!log_ || loss_logged_) return;
+  if (connected && !lost) log_(LogLevel::kInfo, "scanner connected: " + endpoint());
+  if (!lost) return;
+  loss_logged_ = true;
+  log_(LogLevel::kWarning, "scanner " + endpoint() + " lost (" + client_.last_error().ToString() +
+                               "): reconnecting with backoff, again until a scan comes " +
+                               "(counted in STATUS, not logged)");
 }
 
 std::optional<DriverScan> SickScanInput::Next(double timeout_s) {
   core::Result<drivers::sick::ReceivedScan> received = client_.NextScan(timeout_s);
-  LogConnection(received.ok() ? core::OkStatus() : received.status());
+  LogConnection();
   if (!received.ok()) return std::nullopt;
+  if (loss_logged_ && log_) {
+    log_(LogLevel::kInfo, "scanner " + endpoint() + " sends scans again, after " +
+                              std::to_string(losses_since_scan_) + " lost connection(s)");
+  }
+  loss_logged_ = false;
+  losses_since_scan_ = 0;
   core::Result<core::LaserScan> scan =
       drivers::sick::ToLaserScan(received->telegram, options_.conversion, received->stamp_s);
   if (!scan.ok()) {

@@ -1,7 +1,8 @@
 // Scans from a SICK scanner over TCP (drivers/sick's ScannerClient, with its reconnect and
 // backoff), converted to core::LaserScan in host time. The agent's loop calls Next with a
-// short wait, so the LCM links are served between scans. Connections lost and made again are
-// logged once per change and counted for STATUS.
+// short wait, so the LCM links are served between scans. A lost connection is logged once
+// with its reason; the reconnects that follow without a scan (a scanner that stays away or
+// sends nothing usable) are counted for STATUS, and the first scan after them is logged.
 #pragma once
 
 #include <optional>
@@ -42,12 +43,15 @@ class SickScanInput {
   std::string endpoint() const;
 
  private:
-  void LogConnection(const core::Status& last_error);
+  void LogConnection();
 
   const SickInputOptions options_;
   LogSink log_;
   drivers::sick::ScannerClient client_;
-  bool was_connected_ = false;
+  uint64_t seen_connects_ = 0;  // the client's counters when last looked at
+  uint64_t seen_losses_ = 0;    // disconnects and failed attempts
+  bool loss_logged_ = false;    // a loss was logged and no scan has come since
+  uint64_t losses_since_scan_ = 0;
   int64_t conversion_errors_ = 0;
 };
 
