@@ -58,7 +58,8 @@ AggregatorNode::AggregatorNode(Aggregator aggregator, AggregatorNodeOptions opti
                   std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
                       .count())),
       verifier_(options_.fleet_key),
-      limits_(options_.limits) {
+      limits_(options_.limits),
+      held_(options_.max_held_maps) {
   handled_.LoadMerged(aggregator_.store().provenance());
 }
 
@@ -211,6 +212,10 @@ void AggregatorNode::AddTile(const fleetmap::tempmap_tile_t& msg, const core::Te
     }
     return;
   }
+  if (held_.Contains(key)) {  // a resend of a map waiting for its turn
+    ++counters_.duplicates;
+    return;
+  }
   if (auto retry = retry_.find(key); retry != retry_.end()) {
     // The vehicle resends because the journal write failed: try again.
     const Retry again = retry->second;
@@ -263,14 +268,34 @@ void AggregatorNode::AddTile(const fleetmap::tempmap_tile_t& msg, const core::Te
 
 void AggregatorNode::Complete(const MapKey& key, const core::TempMap& map, int32_t tile_count,
                               double map_s, double now_s) {
-  if (!limits_.AllowMerge(key.vehicle_id, now_s)) {
-    Refuse("TEMPMAP: merge rate", counters_.throttled_merges,
-           "vehicle '" + key.vehicle_id + "' completes more than " +
-               std::to_string(options_.limits.merges_per_min) +
-               " maps per minute: " + key.ToString() + " waits unacknowledged for a resend");
-    if (static_cast<int>(retry_.size()) < options_.max_retry_maps) retry_[key] = {map, tile_count};
+  if (!held_.Waiting(key.vehicle_id) && limits_.AllowMerge(key.vehicle_id, map_s, now_s)) {
+    Merge(key, map, tile_count, map_s, now_s);
     return;
   }
+  if (held_.Hold({key, map, tile_count, map_s})) {
+    Refuse("TEMPMAP: merge rate", counters_.throttled_merges,
+           "vehicle '" + key.vehicle_id + "' completes more than " +
+               std::to_string(options_.limits.merges_per_min) + " maps per minute: " +
+               key.ToString() + " and its next maps are held, merged in order as the rate allows");
+    return;
+  }
+  Refuse("TEMPMAP: held maps full", counters_.throttled_merges,
+         "vehicle '" + key.vehicle_id + "' completes more than " +
+             std::to_string(options_.limits.merges_per_min) + " maps per minute and " +
+             std::to_string(options_.max_held_maps) + " maps are held: " + key.ToString() +
+             " waits unacknowledged for a resend");
+  if (static_cast<int>(retry_.size()) < options_.max_retry_maps) retry_[key] = {map, tile_count};
+}
+
+void AggregatorNode::ReleaseHeld(double now_s) {
+  const auto allow = [&](const std::string& vehicle, double map_s) {
+    return limits_.AllowMerge(vehicle, map_s, now_s);
+  };
+  for (const HeldMap& m : held_.Release(allow)) Merge(m.key, m.map, m.tile_count, m.map_s, now_s);
+}
+
+void AggregatorNode::Merge(const MapKey& key, const core::TempMap& map, int32_t tile_count,
+                           double map_s, double now_s) {
   auto report = aggregator_.Submit(map, map_s);
   if (!report.ok() && report.status().code() == core::StatusCode::kIoError) {
     ++counters_.persist_errors;
@@ -420,6 +445,7 @@ void AggregatorNode::OnRequest(const void* data, int size) {
 }
 
 void AggregatorNode::Tick(double now_s) {
+  ReleaseHeld(now_s);
   for (const MapKey& key : acks_.Due(now_s)) SendPending(key, now_s);
   DropStale(now_s);
   if (options_.keyframe_period_s > 0 && now_s >= next_keyframe_s_) {

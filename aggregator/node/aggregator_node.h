@@ -35,6 +35,7 @@
 #include "aggregator/node/ack_schedule.h"
 #include "aggregator/node/cause_log.h"
 #include "aggregator/node/handled_maps.h"
+#include "aggregator/node/held_maps.h"
 #include "aggregator/node/node_counters.h"
 #include "aggregator/node/node_io.h"
 #include "aggregator/node/node_options.h"
@@ -97,8 +98,12 @@ class AggregatorNode {
   void OnTile(const std::string& channel, const void* data, int size, double now_s);
   void AddTile(const fleetmap::tempmap_tile_t& msg, const core::TempMapTile& tile,
                const std::vector<uint8_t>& bytes, bool from_spool, double now_s);
+  // A complete map: merged, or held behind its vehicle's earlier ones or over its merge rate.
   void Complete(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
                 double now_s);
+  void Merge(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
+             double now_s);
+  void ReleaseHeld(double now_s);
   void OnRequest(const void* data, int size);
   // A vehicle's CANDIDATES_FREE_<id>: the candidates it saw empty are dropped (a new version),
   // and the new set goes out.
@@ -146,6 +151,7 @@ class AggregatorNode {
   auth::Signer signer_;
   auth::Verifier verifier_;
   VehicleLimits limits_;
+  HeldMaps held_;  // complete, over the vehicle's merge rate
 };
 
 }  // namespace fleetmap::aggregator::node

@@ -38,11 +38,11 @@ core::Status Read(const YamlReader& r, const YAML::Node& parent, const std::stri
 }
 
 core::Status ReadNode(const YamlReader& r, const YAML::Node& n, AggregatorNodeOptions& o) {
-  FLEETMAP_RETURN_IF_ERROR(
-      OnlyKeys(r, n, "node",
-               {"pending_ack_interval_s", "keyframe_min_interval_s", "keyframe_period_s",
-                "status_period_s", "pending_map_timeout_s", "max_message_bytes",
-                "max_report_matches", "max_remembered_rejections", "max_retry_maps"}));
+  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(
+      r, n, "node",
+      {"pending_ack_interval_s", "keyframe_min_interval_s", "keyframe_period_s", "status_period_s",
+       "pending_map_timeout_s", "max_message_bytes", "max_report_matches",
+       "max_remembered_rejections", "max_retry_maps", "max_held_maps"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "pending_ack_interval_s", o.pending_ack_interval_s));
   FLEETMAP_RETURN_IF_ERROR(
@@ -54,7 +54,8 @@ core::Status ReadNode(const YamlReader& r, const YAML::Node& n, AggregatorNodeOp
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "max_report_matches", o.max_report_matches));
   FLEETMAP_RETURN_IF_ERROR(
       Read(r, n, "node", "max_remembered_rejections", o.max_remembered_rejections));
-  return Read(r, n, "node", "max_retry_maps", o.max_retry_maps);
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "max_retry_maps", o.max_retry_maps));
+  return Read(r, n, "node", "max_held_maps", o.max_held_maps);
 }
 
 core::Status ReadAssembler(const YamlReader& r, const YAML::Node& n, core::AssemblerOptions& o) {
@@ -71,7 +72,7 @@ core::Status ReadLimits(const YamlReader& r, const YAML::Node& n, VehicleLimitOp
   FLEETMAP_RETURN_IF_ERROR(
       OnlyKeys(r, n, "limits",
                {"max_received_bytes", "max_pending_maps_per_vehicle", "tiles_per_s", "tile_burst",
-                "merges_per_min", "merge_burst", "max_vehicles"}));
+                "merges_per_min", "merge_burst", "max_replay_speed", "max_vehicles"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "max_received_bytes", o.max_received_bytes));
   FLEETMAP_RETURN_IF_ERROR(
@@ -80,6 +81,7 @@ core::Status ReadLimits(const YamlReader& r, const YAML::Node& n, VehicleLimitOp
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "tile_burst", o.tile_burst));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "merges_per_min", o.merges_per_min));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "merge_burst", o.merge_burst));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "limits", "max_replay_speed", o.max_replay_speed));
   return Read(r, n, "limits", "max_vehicles", o.max_vehicles);
 }
 

@@ -25,6 +25,7 @@ core::Status AggregatorNodeOptions::Validate() const {
   if (max_remembered_rejections < 1)
     return core::InvalidArgument("node.max_remembered_rejections must be >= 1");
   if (max_retry_maps < 1) return core::InvalidArgument("node.max_retry_maps must be >= 1");
+  if (max_held_maps < 1) return core::InvalidArgument("node.max_held_maps must be >= 1");
   if (process_name.empty() || process_name.size() > 64)
     return core::InvalidArgument("node.process_name must have 1 to 64 characters");
   // Acknowledgements list tile indices as int16 (tempmap_ack_t).

@@ -36,6 +36,9 @@ struct AggregatorNodeOptions {
   // Maps whose journal write failed (a full disk), kept to merge when the vehicle resends,
   // >= 1.
   int max_retry_maps = 32;
+  // Complete maps over their vehicle's merge rate, held to merge in order once it allows,
+  // >= 1 (limits.merges_per_min); beyond, a map waits for the vehicle's resend.
+  int max_held_maps = 128;
   core::AssemblerOptions assembler;  // bounds on temporary maps being received
   VehicleLimitOptions limits;        // bounds per vehicle: sizes, rates, pending maps
   // The fleet key (docs/security.md): every message sent is signed as process_name, and a

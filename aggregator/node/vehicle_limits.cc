@@ -15,6 +15,8 @@ core::Status VehicleLimitOptions::Validate() const {
   if (!(tile_burst >= 1.0)) return core::InvalidArgument("limits.tile_burst must be >= 1");
   if (!positive(merges_per_min)) return core::InvalidArgument("limits.merges_per_min must be > 0");
   if (!(merge_burst >= 1.0)) return core::InvalidArgument("limits.merge_burst must be >= 1");
+  if (!(std::isfinite(max_replay_speed) && max_replay_speed >= 1.0))
+    return core::InvalidArgument("limits.max_replay_speed must be >= 1");
   if (max_vehicles < 1) return core::InvalidArgument("limits.max_vehicles must be >= 1");
   return core::OkStatus();
 }
@@ -23,6 +25,24 @@ bool VehicleLimits::Take(Bucket& b, double rate_per_s, double burst, double now_
   // A clock that went back refills nothing; one that jumped ahead fills the bucket once.
   if (now_s > b.last_s) b.tokens = std::min(burst, b.tokens + (now_s - b.last_s) * rate_per_s);
   b.last_s = now_s;
+  if (b.tokens < 1.0) return false;
+  b.tokens -= 1.0;
+  return true;
+}
+
+bool VehicleLimits::TakeStamped(Bucket& b, double stamp_s, double now_s) const {
+  // The stamps' time, but at least the host's (a vehicle whose stamps stall still refills)
+  // and at most max_replay_speed times it (forged stamps cannot empty the limit).
+  const double host_s = std::max(0.0, now_s - b.last_s);
+  const double stamps_s = b.stamped && std::isfinite(stamp_s) ? stamp_s - b.last_stamp_s : 0.0;
+  const double elapsed_s = std::clamp(stamps_s, host_s, host_s * options_.max_replay_speed);
+  const double rate_per_s = options_.merges_per_min / 60.0;
+  b.tokens = std::min(options_.merge_burst, b.tokens + elapsed_s * rate_per_s);
+  b.last_s = std::max(b.last_s, now_s);
+  if (std::isfinite(stamp_s) && (!b.stamped || stamp_s > b.last_stamp_s)) {
+    b.last_stamp_s = stamp_s;
+    b.stamped = true;
+  }
   if (b.tokens < 1.0) return false;
   b.tokens -= 1.0;
   return true;
@@ -52,10 +72,9 @@ bool VehicleLimits::AllowTile(const std::string& vehicle, double now_s) {
   return v != nullptr && Take(v->tiles, options_.tiles_per_s, options_.tile_burst, now_s);
 }
 
-bool VehicleLimits::AllowMerge(const std::string& vehicle, double now_s) {
+bool VehicleLimits::AllowMerge(const std::string& vehicle, double map_s, double now_s) {
   Vehicle* v = Find(vehicle, now_s);
-  return v != nullptr &&
-         Take(v->merges, options_.merges_per_min / 60.0, options_.merge_burst, now_s);
+  return v != nullptr && TakeStamped(v->merges, map_s, now_s);
 }
 
 bool VehicleLimits::FirstThrottle(const std::string& vehicle) {

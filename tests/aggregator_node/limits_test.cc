@@ -69,26 +69,58 @@ TEST(AggregatorLimitsTest, AFloodingVehicleIsThrottledWhileAnotherIsMerged) {
     EXPECT_EQ(std::count(names.begin(), names.end(), name), 1) << name;
 }
 
-TEST(AggregatorLimitsTest, MergesOverAVehiclesRateWaitForTheResend) {
-  RecordingPublisher out;
+AggregatorNodeOptions SlowMerges() {
   AggregatorNodeOptions options;
-  options.limits.merges_per_min = 6.0;  // one per 10 s
+  options.limits.merges_per_min = 6.0;  // one per 10 s of the maps' stamps
   options.limits.merge_burst = 1.0;
-  auto node = MakeNode(&out, {}, "", options);
-  const auto first = TileMessages(PalletMaps()[0], kUtime);
-  const auto second = TileMessages(PalletMaps()[1], kUtime + 20'000'000);
-  Feed(*node, "v1", first, 1.0);
-  Feed(*node, "v1", second, 2.0);  // complete, but v1 merged 1 s ago
-  EXPECT_EQ(node->aggregator().store().version(), 1u);
-  EXPECT_EQ(node->counters().throttled_merges, 1);
-  Feed(*node, "v1", {second.back()}, 5.0);  // the vehicle's resend, still too early
-  EXPECT_EQ(node->aggregator().store().version(), 1u);
-  Feed(*node, "v1", {second.back()}, 12.0);  // the rate allows it now
-  EXPECT_EQ(node->aggregator().store().version(), 2u);
-  const auto acks = out.Decoded<fleetmap::tempmap_ack_t>(lcmtypes::kTempMapAckChannel);
-  ASSERT_EQ(acks.size(), 2u);
-  EXPECT_EQ(acks[1].tempmap_seq, 2);
-  EXPECT_EQ(acks[1].outcome, fleetmap::tempmap_ack_t::MERGED);
+  return options;
+}
+
+std::vector<int32_t> AckedSequences(const RecordingPublisher& out) {
+  std::vector<int32_t> merged;
+  for (const auto& a : out.Decoded<fleetmap::tempmap_ack_t>(lcmtypes::kTempMapAckChannel))
+    if (a.outcome == fleetmap::tempmap_ack_t::MERGED) merged.push_back(a.tempmap_seq);
+  return merged;
+}
+
+// Maps made faster than the rate (stamps 1 s apart) are held, and merged in the vehicle's
+// order as the rate allows, without waiting for a resend (a replay never resends).
+TEST(AggregatorLimitsTest, MergesOverAVehiclesRateAreHeldAndMergedInOrder) {
+  RecordingPublisher out;
+  auto node = MakeNode(&out, {}, "", SlowMerges());
+  for (int i = 0; i < 3; ++i)
+    Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + i * 1'000'000), 1.0 + i);
+  EXPECT_EQ(AckedSequences(out), (std::vector<int32_t>{1}));
+  EXPECT_EQ(node->counters().throttled_merges, 2);
+  Feed(*node, "v1", {TileMessages(PalletMaps()[1], kUtime + 1'000'000).back()}, 5.0);
+  EXPECT_EQ(node->counters().duplicates, 1);  // a resend of a held map changes nothing
+  node->Tick(6.0);
+  EXPECT_EQ(AckedSequences(out), (std::vector<int32_t>{1}));  // 0.5 maps' worth of time
+  node->Tick(12.0);
+  EXPECT_EQ(AckedSequences(out), (std::vector<int32_t>{1, 2}));
+  node->Tick(22.0);
+  EXPECT_EQ(AckedSequences(out), (std::vector<int32_t>{1, 2, 3}));
+}
+
+// An uplink log replayed 20 times faster than it was recorded: the stamps keep the rate.
+TEST(AggregatorLimitsTest, AReplayFasterThanRealIsMergedAsItWasMade) {
+  RecordingPublisher out;
+  auto node = MakeNode(&out, {}, "", SlowMerges());
+  for (int i = 0; i < 4; ++i)
+    Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + i * 20'000'000), 1.0 + i);
+  EXPECT_EQ(node->counters().throttled_merges, 0);
+  EXPECT_EQ(AckedSequences(out), (std::vector<int32_t>{1, 2, 3, 4}));
+}
+
+// Stamps that run ahead of the host's clock by more than max_replay_speed (forged, or a
+// backlog sent at once) refill the rate only that much faster than real time.
+TEST(AggregatorLimitsTest, StampsFarAheadOfTheClockDoNotLiftTheRate) {
+  RecordingPublisher out;
+  auto node = MakeNode(&out, {}, "", SlowMerges());
+  for (int i = 0; i < 4; ++i)
+    Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + i * 1000'000'000LL), 1.0 + i * 0.1);
+  EXPECT_EQ(AckedSequences(out), (std::vector<int32_t>{1}));
+  EXPECT_EQ(node->counters().throttled_merges, 3);
 }
 
 TEST(AggregatorLimitsTest, AnOversizeMessageIsRefusedBeforeDecoding) {
@@ -112,6 +144,12 @@ TEST(AggregatorLimitsTest, BadLimitsAreRefused) {
   EXPECT_FALSE(o.Validate().ok());
   o = {};
   o.limits.max_received_bytes = 10;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.limits.max_replay_speed = 0.5;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.max_held_maps = 0;
   EXPECT_FALSE(o.Validate().ok());
 }
 
