@@ -33,6 +33,8 @@ install(FILES "${fleetmap_pkg_dir}/etc/60-fleetmap.conf" DESTINATION lib/sysctl.
 install(PROGRAMS "${fleetmap_pkg_dir}/lib/fleetmap-multicast-setup" DESTINATION lib/fleetmap
         COMPONENT common)
 install(FILES "${fleetmap_pkg_dir}/etc/multicast.env" DESTINATION /etc/fleetmap COMPONENT common)
+install(FILES "${fleetmap_pkg_dir}/debian/common/lintian-overrides"
+        DESTINATION share/lintian/overrides RENAME fleetmap-common COMPONENT common)
 install(FILES "${PROJECT_SOURCE_DIR}/docs/operations.md" "${PROJECT_SOURCE_DIR}/docs/deployment.md"
         DESTINATION share/doc/fleetmap-common COMPONENT common)
 
@@ -71,12 +73,99 @@ install(PROGRAMS "${PROJECT_BINARY_DIR}/packaging/fleetmap-lan-experiment" DESTI
 # fleetmap-lcmtypes-java
 set(fleetmap_components common agent aggregator tools)
 if(TARGET fleetmap_lcmtypes_jar)
-  install(FILES "${PROJECT_BINARY_DIR}/lcmtypes/fleetmap_lcmtypes.jar" DESTINATION share/java
+  # The Java policy's names: the versioned jar, and the unversioned name as a link to it.
+  install(FILES "${PROJECT_BINARY_DIR}/lcmtypes/fleetmap-lcmtypes.jar" DESTINATION share/java
+          RENAME "fleetmap-lcmtypes-${PROJECT_VERSION}.jar" COMPONENT java)
+  file(CREATE_LINK "fleetmap-lcmtypes-${PROJECT_VERSION}.jar"
+       "${PROJECT_BINARY_DIR}/packaging/fleetmap-lcmtypes.jar" SYMBOLIC)
+  install(FILES "${PROJECT_BINARY_DIR}/packaging/fleetmap-lcmtypes.jar" DESTINATION share/java
           COMPONENT java)
   configure_file("${fleetmap_pkg_dir}/bin/fleetmap-spy" "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy"
                  @ONLY)
   install(PROGRAMS "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy" DESTINATION bin COMPONENT java)
   list(APPEND fleetmap_components java)
+endif()
+
+# Every package's copyright and changelog (Debian policy 12.5, 12.7; a native package's
+# changelog is changelog.gz, compressed with gzip -9n so that it carries no timestamp).
+set(fleetmap_doc_dir "${PROJECT_BINARY_DIR}/packaging/doc")
+configure_file("${fleetmap_pkg_dir}/debian/changelog.in" "${fleetmap_doc_dir}/changelog" @ONLY)
+file(REMOVE "${fleetmap_doc_dir}/changelog.gz")
+execute_process(COMMAND gzip -9nf "${fleetmap_doc_dir}/changelog" RESULT_VARIABLE gzip_rc)
+if(NOT gzip_rc EQUAL 0)
+  message(FATAL_ERROR "gzip of the packages' changelog failed")
+endif()
+function(fleetmap_package_docs component package)
+  install(FILES "${fleetmap_pkg_dir}/debian/copyright" "${fleetmap_doc_dir}/changelog.gz"
+          DESTINATION "share/doc/${package}" COMPONENT ${component})
+endfunction()
+fleetmap_package_docs(common fleetmap-common)
+fleetmap_package_docs(agent fleetmap-agent)
+fleetmap_package_docs(aggregator fleetmap-aggregator)
+fleetmap_package_docs(tools fleetmap-tools)
+if(TARGET fleetmap_lcmtypes_jar)
+  fleetmap_package_docs(java fleetmap-lcmtypes-java)
+endif()
+
+# A manual page per program, from its --help by help2man at build time (not when cross-
+# compiling: the programs do not run on the build host).
+find_program(FLEETMAP_HELP2MAN help2man)
+set(fleetmap_man_dir "${PROJECT_BINARY_DIR}/packaging/man")
+add_custom_target(fleetmap_man_pages ALL)
+add_dependencies(fleetmap_packaged fleetmap_man_pages)
+# fleetmap_man_page(COMPONENT NAME "what it is" COMMAND [VERSION]): COMMAND answers --help
+# (and --version, unless VERSION is given).
+function(fleetmap_man_page component name summary command)
+  if(CMAKE_CROSSCOMPILING)
+    return()
+  endif()
+  if(NOT FLEETMAP_HELP2MAN)
+    message(WARNING "help2man not found (scripts/install_deps.sh): no manual page for ${name}")
+    return()
+  endif()
+  set(version_args "")
+  if(ARGN)
+    set(version_args "--version-string=${ARGN}")
+  endif()
+  set(page "${fleetmap_man_dir}/${name}.1.gz")
+  add_custom_command(
+    OUTPUT "${page}"
+    COMMAND "${CMAKE_COMMAND}" -E make_directory "${fleetmap_man_dir}"
+    COMMAND sh -c "\"$0\" --no-info --no-discard-stderr --name=\"$1\" $2 \"$3\" | gzip -9n > \"$4\""
+            "${FLEETMAP_HELP2MAN}" "${summary}" "${version_args}" "${command}" "${page}"
+    DEPENDS "${command}"
+    COMMENT "help2man ${name}.1"
+    VERBATIM)
+  add_custom_target(fleetmap_man_${name} DEPENDS "${page}")
+  add_dependencies(fleetmap_man_pages fleetmap_man_${name})
+  install(FILES "${page}" DESTINATION share/man/man1 COMPONENT ${component})
+endfunction()
+function(fleetmap_program_man_page component target summary)
+  fleetmap_man_page(${component} ${target} "${summary}" "$<TARGET_FILE:${target}>")
+  if(TARGET fleetmap_man_${target})
+    add_dependencies(fleetmap_man_${target} ${target})
+  endif()
+endfunction()
+fleetmap_program_man_page(agent fleetmap-agent "fleetmap vehicle agent")
+fleetmap_program_man_page(aggregator fleetmap-aggregator "merge the fleet's temporary maps into the current map")
+fleetmap_program_man_page(aggregator fleetmap-mapctl "export, list, roll back and edit the fleet map's history")
+fleetmap_program_man_page(aggregator fleetmap-keygen "write a new fleet key")
+fleetmap_program_man_page(aggregator fleetmap-record "record LCM channels to a log file")
+fleetmap_program_man_page(tools fleetmap-sim "simulate a warehouse and its vehicles over LCM")
+fleetmap_program_man_page(tools fleetmap-eval "evaluate map updates against the simulation's truth")
+fleetmap_program_man_page(tools fleetmap-maptool "convert, compare and draw occupancy maps")
+fleetmap_program_man_page(tools fleetmap-sick-emulator "emulate a SICK laser scanner on a TCP port")
+fleetmap_program_man_page(tools fleetmap-sim-candump "write a simulated vehicle's odometry as a CAN log")
+fleetmap_program_man_page(tools fleetmap-carmen-eval "evaluate the scan matcher on a CARMEN log")
+fleetmap_program_man_page(tools fleetmap-publish-samples "publish a sample of every fleetmap LCM type")
+fleetmap_program_man_page(tools fleetmap-lan-tool "traffic and timing helpers of the LAN experiment")
+fleetmap_program_man_page(tools fleetmap-worldgen "generate buildings and scenarios for the world suite")
+fleetmap_program_man_page(tools fleetmap-suite "run the world suite")
+fleetmap_man_page(tools fleetmap-lan-experiment "bandwidth experiments on a LAN of network namespaces"
+                  "${PROJECT_SOURCE_DIR}/tools/lan/fleetmap-lan-experiment" "${PROJECT_VERSION}")
+if(TARGET fleetmap_lcmtypes_jar)
+  fleetmap_man_page(java fleetmap-spy "lcm-spy with fleetmap's message types"
+                    "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy")
 endif()
 
 # Maintainer scripts and conffiles, per package.
@@ -86,6 +175,9 @@ function(fleetmap_control_files component)
   set(files "")
   foreach(script postinst postrm prerm)
     if(EXISTS "${fleetmap_pkg_dir}/debian/${component}/${script}")
+      # Copied when CMake configures: an edited script must configure again.
+      set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+                                             "${fleetmap_pkg_dir}/debian/${component}/${script}")
       file(COPY "${fleetmap_pkg_dir}/debian/${component}/${script}" DESTINATION "${dir}"
            FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
                             WORLD_READ WORLD_EXECUTE)
@@ -125,24 +217,24 @@ set(CPACK_DEBIAN_COMMON_PACKAGE_ARCHITECTURE all)
 set(CPACK_DEBIAN_COMMON_PACKAGE_SHLIBDEPS OFF)
 set(CPACK_DEBIAN_COMMON_PACKAGE_DEPENDS "adduser, iproute2, procps")
 set(CPACK_DEBIAN_COMMON_DESCRIPTION
-    "fleetmap: system user, data folder, LCM multicast route and receive buffer\n The fleetmap user, /var/lib/fleetmap, fleetmap-multicast.service (a route for\n 224.0.0.0/4) and the net.core.rmem_max setting that LCM's 8 MiB receive buffers need.")
+    "fleetmap: system user, data folder, LCM multicast route and receive buffer\n The fleetmap user, /var/lib/fleetmap, fleetmap-multicast.service (a route for\n 224.0.0.0/4) and the net.core.rmem_max setting that LCM's 8 MiB receive\n buffers need.")
 
 set(CPACK_DEBIAN_AGENT_PACKAGE_NAME fleetmap-agent)
 set(CPACK_DEBIAN_AGENT_PACKAGE_DEPENDS "${fleetmap_common_dep}")
 set(CPACK_DEBIAN_AGENT_PACKAGE_SUGGESTS "can-utils, liblcm-bin")
 set(CPACK_DEBIAN_AGENT_DESCRIPTION
-    "fleetmap vehicle agent\n Runs on every vehicle: localizes on the current map, detects where the laser no\n longer agrees with it, maps that place and sends it to the aggregator over LCM.\n One systemd instance per vehicle: fleetmap-agent@ID.service.")
+    "fleetmap vehicle agent\n Runs on every vehicle: localizes on the current map, detects where the laser\n no longer agrees with it, maps that place and sends it to the aggregator over\n LCM. One systemd instance per vehicle: fleetmap-agent@ID.service.")
 
 set(CPACK_DEBIAN_AGGREGATOR_PACKAGE_NAME fleetmap-aggregator)
 set(CPACK_DEBIAN_AGGREGATOR_PACKAGE_DEPENDS "${fleetmap_common_dep}")
 set(CPACK_DEBIAN_AGGREGATOR_PACKAGE_SUGGESTS "liblcm-bin")
 set(CPACK_DEBIAN_AGGREGATOR_DESCRIPTION
-    "fleetmap aggregator and fleetmap-mapctl\n Merges the vehicles' temporary maps into the versioned current map and sends\n every change back; fleetmap-mapctl exports, lists, rolls back and edits its history.")
+    "fleetmap aggregator and fleetmap-mapctl\n Merges the vehicles' temporary maps into the versioned current map and sends\n every change back; fleetmap-mapctl exports, lists, rolls back and edits its\n history.")
 
 set(CPACK_DEBIAN_TOOLS_PACKAGE_NAME fleetmap-tools)
 set(CPACK_DEBIAN_TOOLS_PACKAGE_RECOMMENDS "liblcm-bin, iproute2, gnuplot-nox")
 set(CPACK_DEBIAN_TOOLS_DESCRIPTION
-    "fleetmap simulator, evaluation and test tools\n The warehouse simulator, the evaluation against ground truth, the SICK scanner\n emulator, the CAN log writer, maptool, the CARMEN evaluation and the LAN experiment.")
+    "fleetmap simulator, evaluation and test tools\n The warehouse simulator, the evaluation against ground truth, the SICK scanner\n emulator, the CAN log writer, maptool, the CARMEN evaluation and the LAN\n experiment.")
 
 set(CPACK_DEBIAN_JAVA_PACKAGE_NAME fleetmap-lcmtypes-java)
 set(CPACK_DEBIAN_JAVA_PACKAGE_ARCHITECTURE all)
@@ -150,6 +242,6 @@ set(CPACK_DEBIAN_JAVA_PACKAGE_SHLIBDEPS OFF)
 set(CPACK_DEBIAN_JAVA_PACKAGE_DEPENDS "liblcm-java, liblcm-bin, default-jre-headless | java-runtime-headless")
 set(CPACK_DEBIAN_JAVA_PACKAGE_RECOMMENDS "libjchart2d-java")
 set(CPACK_DEBIAN_JAVA_DESCRIPTION
-    "fleetmap LCM message types for lcm-spy\n fleetmap_lcmtypes.jar and fleetmap-spy, which starts lcm-spy with it.")
+    "fleetmap LCM message types for lcm-spy\n fleetmap-lcmtypes.jar and fleetmap-spy, which starts lcm-spy with it.")
 
 include(CPack)

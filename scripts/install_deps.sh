@@ -18,6 +18,7 @@ packages=(
   libsodium-dev  # message authentication: HMAC-SHA-256, key derivation (docs/security.md)
   gnuplot-nox  # the LAN experiments' plots (tools/lan, docs/lan_experiments.md)
   dpkg-dev fakeroot file systemd  # Debian packages: dpkg-shlibdeps, systemd-analyze (docs/deployment.md)
+  help2man lintian  # the packages' manual pages and their check (tests/deploy/package_test.sh)
   "$@"
 )
 

@@ -5,7 +5,7 @@
 # downlink group, each under its own Xvfb display, with the viewer of one channel open.
 #   scripts/lcm_spy_screenshots.sh [--bin DIR] [--build DIR] [--port P] [--wait S] [--out DIR]
 #     --bin DIR    the fleetmap programs                                    [build/bin]
-#     --build DIR  the build folder holding lcmtypes/fleetmap_lcmtypes.jar      [build]
+#     --build DIR  the build folder holding lcmtypes/fleetmap-lcmtypes.jar      [build]
 #     --port P     uplink port of the run (downlink P+1, sensor P+2)              [7751]
 #     --wait S     seconds of the run before the screenshots (merges by then)      [45]
 #     --out DIR    where lcm_spy_uplink.png and lcm_spy_downlink.png go          [docs]

@@ -8,7 +8,7 @@ repo_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # shellcheck source=tools/lcm_java_env.sh
 source "${repo_dir}/tools/lcm_java_env.sh"
 build_dir="${FLEETMAP_BUILD_DIR:-${repo_dir}/build}"
-jar="${build_dir}/lcmtypes/fleetmap_lcmtypes.jar"
+jar="${build_dir}/lcmtypes/fleetmap-lcmtypes.jar"
 
 usage() {
   cat <<EOF
@@ -26,7 +26,7 @@ to lcm-logplayer-gui; its options:
 Example: tools/logplayer.sh out/logs/uplink.lcmlog
 
 Environment:
-  FLEETMAP_BUILD_DIR  build directory holding lcmtypes/fleetmap_lcmtypes.jar
+  FLEETMAP_BUILD_DIR  build directory holding lcmtypes/fleetmap-lcmtypes.jar
                       (default: ${repo_dir}/build)
 Needs an X display (or xvfb-run) and, for udpm:// URLs, a multicast route
 (ip route add 224.0.0.0/4 dev lo for a single host). Debian's lcm-logplayer-gui passes its

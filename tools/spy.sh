@@ -6,7 +6,7 @@ repo_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # shellcheck source=tools/lcm_java_env.sh
 source "${repo_dir}/tools/lcm_java_env.sh"
 build_dir="${FLEETMAP_BUILD_DIR:-${repo_dir}/build}"
-jar="${build_dir}/lcmtypes/fleetmap_lcmtypes.jar"
+jar="${build_dir}/lcmtypes/fleetmap-lcmtypes.jar"
 lcm_url="udpm://239.255.76.67:7667?ttl=0"
 
 usage() {
@@ -18,7 +18,7 @@ Starts lcm-spy with the fleetmap LCM types on its class path.
   -h, --help      show this help
 
 Environment:
-  FLEETMAP_BUILD_DIR  build directory holding lcmtypes/fleetmap_lcmtypes.jar
+  FLEETMAP_BUILD_DIR  build directory holding lcmtypes/fleetmap-lcmtypes.jar
                       (default: ${repo_dir}/build)
 Needs an X display (or xvfb-run) and, for udpm:// URLs, a multicast route
 (ip route add 224.0.0.0/4 dev lo for a single host). See docs/lcm_spy.md.

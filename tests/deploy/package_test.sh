@@ -57,7 +57,7 @@ for c in "fleetmap-agent /etc/fleetmap/agent-example.yaml" \
   set -- $c
   grep -qx "$2" "$work/control/$1/conffiles" 2>/dev/null || fail "$2 is not a conffile of $1"
 done
-grep -q "adduser --system" "$work/control/fleetmap-common/postinst" || fail "postinst creates no system user"
+grep -q "adduser --quiet --system" "$work/control/fleetmap-common/postinst" || fail "postinst creates no system user"
 for s in "$work"/control/*/{postinst,postrm,prerm}; do
   [[ -f $s ]] && { sh -n "$s" || fail "$s: syntax"; }
 done
@@ -70,7 +70,7 @@ files=(
   usr/bin/fleetmap-sim usr/bin/fleetmap-eval usr/bin/fleetmap-maptool usr/bin/fleetmap-sick-emulator
   usr/bin/fleetmap-sim-candump usr/bin/fleetmap-carmen-eval usr/bin/fleetmap-publish-samples
   usr/bin/fleetmap-lan-tool usr/bin/fleetmap-lan-experiment usr/bin/fleetmap-spy
-  usr/share/java/fleetmap_lcmtypes.jar
+  usr/share/java/fleetmap-lcmtypes.jar
   lib/systemd/system/fleetmap-agent@.service lib/systemd/system/fleetmap-aggregator.service
   lib/systemd/system/fleetmap-multicast.service usr/lib/fleetmap/fleetmap-multicast-setup
   usr/lib/sysctl.d/60-fleetmap.conf
@@ -96,6 +96,32 @@ for f in "$root"/usr/bin/*; do
   [[ ${#out} -gt 40 ]] || fail "$name --help prints too little: '$out'"
 done
 pass "--version and --help of $(ls "$root/usr/bin" | wc -l) programs"
+
+# Every program has a manual page and every package its copyright and changelog.
+for f in "$root"/usr/bin/*; do
+  name=$(basename "$f")
+  page=$root/usr/share/man/man1/$name.1.gz
+  [[ -s $page ]] || { fail "no manual page for $name"; continue; }
+  zcat "$page" | grep -q "^\.SH DESCRIPTION\|^\.SH SYNOPSIS\|^\.SH NAME" || fail "$name.1 has no sections"
+done
+for p in "${packages[@]}"; do
+  [[ -s $root/usr/share/doc/$p/copyright && -s $root/usr/share/doc/$p/changelog.gz ]] ||
+    fail "$p lacks /usr/share/doc/$p/copyright or changelog.gz"
+done
+pass "manual pages, copyright and changelog"
+
+# lintian (Debian's package checker): no error and no warning.
+if command -v lintian >/dev/null; then
+  out=$(lintian "$work"/deb/*.deb 2>&1 | grep -E '^[EW]: ')
+  if [[ -z $out ]]; then
+    pass "lintian: 0 errors, 0 warnings"
+  else
+    fail "lintian: $(grep -c '^E: ' <<<"$out") errors, $(grep -c '^W: ' <<<"$out") warnings:
+$out"
+  fi
+else
+  fail "lintian missing (scripts/install_deps.sh installs it)"
+fi
 
 # The units: systemd-analyze verify resolves ExecStart= against the scratch root.
 if command -v systemd-analyze >/dev/null; then
