@@ -27,10 +27,10 @@ core::Status RestoreSnapshot(const std::string& path, CurrentMapStore& store, in
   return core::OkStatus();
 }
 
-core::Result<uint64_t> ReplayJournal(const std::string& path, CurrentMapStore& store,
-                                     int64_t max_bytes, RestoreReport& report) {
+core::Result<JournalContents> ReplayJournal(const std::string& path, CurrentMapStore& store,
+                                            int64_t max_bytes, RestoreReport& report) {
   auto journal = ReadJournal(path, max_bytes);
-  if (journal.status().code() == core::StatusCode::kNotFound) return uint64_t{0};
+  if (journal.status().code() == core::StatusCode::kNotFound) return JournalContents{};
   if (!journal.ok()) return journal.status();
   report.torn_tail_dropped = journal->torn_tail;
   report.torn_detail = journal->torn_detail;
@@ -46,7 +46,7 @@ core::Result<uint64_t> ReplayJournal(const std::string& path, CurrentMapStore& s
     if (!applied.ok()) return core::DataLoss(path + ": " + applied.status().message());
     ++report.journal_records;
   }
-  return journal->valid_bytes;
+  return journal;
 }
 
 }  // namespace
@@ -75,10 +75,9 @@ core::Result<MapPersistence> MapPersistence::Open(const std::string& folder, Cur
   const std::string journal_path = folder + "/" + kJournalName;
   FLEETMAP_RETURN_IF_ERROR(
       RestoreSnapshot(folder + "/" + kSnapshotName, store, options.max_file_bytes, r));
-  uint64_t valid_bytes = 0;
-  FLEETMAP_ASSIGN_OR_RETURN(valid_bytes,
-                            ReplayJournal(journal_path, store, options.max_file_bytes, r));
-  auto writer = JournalWriter::Open(journal_path, valid_bytes);
+  JournalContents found;
+  FLEETMAP_ASSIGN_OR_RETURN(found, ReplayJournal(journal_path, store, options.max_file_bytes, r));
+  auto writer = JournalWriter::Open(journal_path, found);
   if (!writer.ok()) return writer.status();
   MapPersistence persistence(folder, std::move(lock).value(), std::move(writer).value(), options);
   persistence.records_since_snapshot_ = r.journal_records + r.journal_skipped;

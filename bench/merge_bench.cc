@@ -123,10 +123,10 @@ BENCHMARK(BM_Total)->Unit(benchmark::kMillisecond);
 // The same again for the rate (the reporter keeps one figure per benchmark).
 BENCHMARK(BM_Total)->Name("BM_TotalRate")->Unit(benchmark::kMillisecond);
 
-// What persistence adds: one journal record of a typical merge, written and fsynced.
+// What persistence adds: one journal record of a typical merge, written, committed and fsynced.
 void BM_JournalAppend(benchmark::State& state) {
   const std::string path = "/tmp/fleetmap_merge_bench_journal.fmj";
-  auto writer = aggregator::JournalWriter::Open(path, 0).value();
+  auto writer = aggregator::JournalWriter::Open(path, aggregator::JournalContents{}).value();
   aggregator::MergeCommit commit{1, {"cts1", 1, 0.0, 8.0, 8.0}, {}, {}};
   for (int64_t c = 0; c < 300; ++c)
     commit.changes.push_back({c * 7, aggregator::CellChangeKind::kAdded});

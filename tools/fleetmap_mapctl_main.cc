@@ -144,7 +144,7 @@ core::Result<Loaded> Load(const Args& a) {
   if (!history.ok()) return history.status();
   if (history->torn_tail) {
     std::fprintf(stderr,
-                 "fleetmap-mapctl: note: the journal ends in a half-written record (%s): "
+                 "fleetmap-mapctl: note: the journal ends in a record never committed (%s): "
                  "ignored, as the aggregator does\n",
                  history->torn_detail.c_str());
   }

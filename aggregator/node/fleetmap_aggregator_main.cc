@@ -148,7 +148,7 @@ core::Result<std::unique_ptr<AggregatorNode>> MakeNode(const Args& args,
                  "records%s)\n",
                  config.state_dir.c_str(), (unsigned long long)aggregator->store().version(),
                  restore.snapshot_found ? "found" : "none", restore.journal_records,
-                 restore.torn_tail_dropped ? ", a torn last record dropped" : "");
+                 restore.torn_tail_dropped ? ", a last record never committed dropped" : "");
   }
   return AggregatorNode::Create(std::move(aggregator).value(), config.node, publisher, StderrLog(),
                                 now_s);

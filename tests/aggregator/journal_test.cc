@@ -9,6 +9,7 @@
 namespace fleetmap::aggregator {
 namespace {
 
+using testing::CrashedWhileAppending;
 using testing::ReadAll;
 using testing::WriteAll;
 
@@ -17,10 +18,26 @@ std::vector<uint8_t> Payload(int i) { return std::vector<uint8_t>(10 + i, uint8_
 class JournalTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto writer = JournalWriter::Open(path_, 0);
+    auto writer = JournalWriter::Open(path_, JournalContents{});
     ASSERT_TRUE(writer.ok()) << writer.status().ToString();
-    for (int i = 0; i < 3; ++i) ASSERT_TRUE(writer->Append(Payload(i)).ok());
+    for (int i = 0; i < 2; ++i) ASSERT_TRUE(writer->Append(Payload(i)).ok());
+    two_ = ReadAll(path_);
+    ASSERT_TRUE(writer->Append(Payload(2)).ok());
     good_ = ReadAll(path_);
+  }
+  JournalWriter OpenFound() {
+    auto writer = JournalWriter::Open(path_, Read());
+    EXPECT_TRUE(writer.ok()) << writer.status().ToString();
+    return std::move(writer).value();
+  }
+  // Damage to what was committed: DataLoss naming the record and byte.
+  void ExpectDamaged(const std::vector<char>& bytes, const std::string& record) {
+    WriteAll(path_, bytes);
+    auto c = ReadJournal(path_, 1 << 20);
+    ASSERT_FALSE(c.ok());
+    EXPECT_EQ(c.status().code(), core::StatusCode::kDataLoss);
+    EXPECT_NE(c.status().message().find(record), std::string::npos) << c.status().message();
+    EXPECT_NE(c.status().message().find("at byte"), std::string::npos) << c.status().message();
   }
   JournalContents Read() {
     auto c = ReadJournal(path_, 1 << 20);
@@ -33,7 +50,7 @@ class JournalTest : public ::testing::Test {
     EXPECT_TRUE(c.torn_tail);
     ASSERT_EQ(c.records.size(), 2u);
     EXPECT_EQ(c.records[1], Payload(1));
-    auto writer = JournalWriter::Open(path_, c.valid_bytes);
+    auto writer = JournalWriter::Open(path_, c);
     ASSERT_TRUE(writer.ok());
     ASSERT_TRUE(writer->Append(Payload(7)).ok());
     const JournalContents after = Read();
@@ -44,7 +61,8 @@ class JournalTest : public ::testing::Test {
 
   testing::ScratchFolder folder_;
   std::string path_ = folder_.File("journal.fmj");
-  std::vector<char> good_;
+  std::vector<char> two_;   // after two records
+  std::vector<char> good_;  // after three
 };
 
 TEST_F(JournalTest, ReadsBackWhatWasAppended) {
@@ -56,20 +74,19 @@ TEST_F(JournalTest, ReadsBackWhatWasAppended) {
 }
 
 TEST_F(JournalTest, HalfWrittenLastRecordIsDropped) {
-  std::vector<char> torn(good_.begin(), good_.end() - 5);
-  WriteAll(path_, torn);
+  WriteAll(path_, CrashedWhileAppending(two_, good_, 5));
   ExpectTwoThenRecovers();
 }
 
 TEST_F(JournalTest, ShortLastRecordHeaderIsDropped) {
-  const size_t last = good_.size() - (kJournalRecordHeaderBytes + Payload(2).size());
-  WriteAll(path_, std::vector<char>(good_.begin(), good_.begin() + last + 7));
+  const size_t record = kJournalRecordHeaderBytes + Payload(2).size();
+  WriteAll(path_, CrashedWhileAppending(two_, good_, record - 7));
   ExpectTwoThenRecovers();
 }
 
-TEST_F(JournalTest, LastRecordFailingItsCrcIsDropped) {
-  std::vector<char> bad = good_;
-  bad[bad.size() - 3] ^= 0x40;
+TEST_F(JournalTest, AWholeRecordNeverCommittedIsDropped) {
+  std::vector<char> bad = CrashedWhileAppending(two_, good_, 0);
+  bad[bad.size() - 3] ^= 0x40;  // its CRC need not even hold: it was never committed
   WriteAll(path_, bad);
   ExpectTwoThenRecovers();
 }
@@ -81,6 +98,44 @@ TEST_F(JournalTest, ZerosAfterTheLastRecordAreDropped) {
   const JournalContents c = Read();
   EXPECT_TRUE(c.torn_tail);
   EXPECT_EQ(c.records.size(), 3u);
+}
+
+TEST_F(JournalTest, ACommittedRecordCutShortIsDamage) {
+  ExpectDamaged(std::vector<char>(good_.begin(), good_.end() - 5), "record 3 of 3");
+  ExpectDamaged(std::vector<char>(good_.begin(), good_.begin() + two_.size() - 4), "record 2 of 3");
+}
+
+TEST_F(JournalTest, CommittedRecordsZeroedAtTheSameLengthAreDamage) {
+  std::vector<char> zeroed = good_;
+  for (size_t i = kJournalHeaderBytes; i < zeroed.size(); ++i) zeroed[i] = 0;
+  ExpectDamaged(zeroed, "record 1 of 3");
+}
+
+TEST_F(JournalTest, ABitFlippedInTheLastCommittedRecordIsDamage) {
+  std::vector<char> bad = good_;
+  bad[bad.size() - 3] ^= 0x40;
+  ExpectDamaged(bad, "record 3 of 3");
+  bad = good_;
+  bad[9] ^= 0x01;  // the commit block itself
+  ExpectDamaged(bad, "commit block");
+}
+
+TEST_F(JournalTest, AFormatOneJournalIsReadAndRewrittenAsFormatTwo) {
+  // Format 1: the same records after "FMJ1" and version 1, without a commit block.
+  std::vector<char> v1 = good_;
+  v1.erase(v1.begin() + kJournalV1HeaderBytes, v1.begin() + kJournalHeaderBytes);
+  v1[4] = 1;
+  WriteAll(path_, v1);
+  JournalContents c = Read();
+  EXPECT_EQ(c.format_version, 1u);
+  ASSERT_EQ(c.records.size(), 3u);
+  JournalWriter writer = OpenFound();
+  EXPECT_EQ(ReadAll(path_), good_);  // rewritten: the same records, committed
+  ASSERT_TRUE(writer.Append(Payload(3)).ok());
+  c = Read();
+  EXPECT_EQ(c.format_version, kJournalFormatVersion);
+  ASSERT_EQ(c.records.size(), 4u);
+  EXPECT_EQ(c.records[3], Payload(3));
 }
 
 TEST_F(JournalTest, CorruptionBeforeTheEndIsAnError) {
@@ -95,7 +150,7 @@ TEST_F(JournalTest, CorruptionBeforeTheEndIsAnError) {
 }
 
 TEST_F(JournalTest, FullDiskFailsTheAppendAndLeavesNoPartialRecord) {
-  auto writer = JournalWriter::Open(path_, good_.size());
+  auto writer = JournalWriter::Open(path_, Read());
   ASSERT_TRUE(writer.ok());
   {
     testing::FileSizeLimit full(good_.size() + 6);  // room for half a record header
@@ -111,7 +166,7 @@ TEST_F(JournalTest, FullDiskFailsTheAppendAndLeavesNoPartialRecord) {
 }
 
 TEST_F(JournalTest, ResetEmptiesIt) {
-  auto writer = JournalWriter::Open(path_, good_.size());
+  auto writer = JournalWriter::Open(path_, Read());
   ASSERT_TRUE(writer.ok());
   ASSERT_TRUE(writer->Reset().ok());
   EXPECT_TRUE(Read().records.empty());

@@ -117,13 +117,15 @@ TEST_F(PersistenceTest, CandidatesSeenFreeAreDroppedInAJournaledVersionOfTheirOw
 }
 
 TEST_F(PersistenceTest, TornLastRecordIsDroppedAndTheMapIsTheVersionBefore) {
+  std::vector<char> two;
   {
     Aggregator a = Open(Options());
-    Feed(a, 0, 3);
+    Feed(a, 0, 2);
+    two = ReadAll(journal_);
+    Feed(a, 2, 3);
   }
-  std::vector<char> journal = ReadAll(journal_);
-  journal.resize(journal.size() - 7);  // the last merge was being written when power went
-  WriteAll(journal_, journal);
+  // The last merge was being written when power went (never committed, never acknowledged).
+  WriteAll(journal_, testing::CrashedWhileAppending(two, ReadAll(journal_), 7));
   RestoreReport report;
   Aggregator restarted = Open(Options(), &report);
   EXPECT_TRUE(report.torn_tail_dropped);
@@ -135,6 +137,30 @@ TEST_F(PersistenceTest, TornLastRecordIsDroppedAndTheMapIsTheVersionBefore) {
   Feed(*reference, 2, 3);
   ExpectSame(restarted, *reference);
   EXPECT_FALSE(ReadJournal(journal_, 1 << 30)->torn_tail);
+}
+
+// Damage to what the journal committed (acknowledged merges): the aggregator refuses to
+// start, names the record and byte, and leaves the file as it is.
+TEST_F(PersistenceTest, ADamagedJournalRefusesToStartAndIsLeftAsItIs) {
+  {
+    Aggregator a = Open(Options());
+    Feed(a, 0, 3);
+  }
+  const std::vector<char> good = ReadAll(journal_);
+  std::vector<char> cut(good.begin(), good.begin() + good.size() / 2);  // mid-file
+  std::vector<char> zeroed = good;
+  for (size_t i = kJournalHeaderBytes; i < zeroed.size(); ++i) zeroed[i] = 0;  // same length
+  std::vector<char> flipped = good;
+  flipped[flipped.size() - 3] ^= 0x10;  // in the last, full-length record
+  for (const auto& damaged : {cut, zeroed, flipped}) {
+    WriteAll(journal_, damaged);
+    auto restarted = Aggregator::Open(testing::HallMap(), Options(), folder_.path());
+    ASSERT_FALSE(restarted.ok());
+    EXPECT_EQ(restarted.status().code(), core::StatusCode::kDataLoss);
+    EXPECT_NE(restarted.status().message().find("record"), std::string::npos);
+    EXPECT_NE(restarted.status().message().find("byte"), std::string::npos);
+    EXPECT_EQ(ReadAll(journal_), damaged) << "the journal was modified";
+  }
 }
 
 TEST_F(PersistenceTest, RestartFromSnapshotAndJournal) {

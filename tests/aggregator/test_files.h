@@ -61,4 +61,13 @@ inline void WriteAll(const std::string& path, const std::vector<char>& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), bytes.size());
 }
 
+// What a crash leaves while the record after `before` was being written: the journal
+// `after` (one record more) with `before`'s commit block, and its last `cut` bytes missing.
+inline std::vector<char> CrashedWhileAppending(const std::vector<char>& before,
+                                               std::vector<char> after, size_t cut) {
+  std::copy(before.begin() + 8, before.begin() + 24, after.begin() + 8);  // the commit block
+  after.resize(after.size() - cut);
+  return after;
+}
+
 }  // namespace fleetmap::aggregator::testing
