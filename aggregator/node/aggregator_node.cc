@@ -216,6 +216,11 @@ void AggregatorNode::AddTile(const fleetmap::tempmap_tile_t& msg, const core::Te
     ++counters_.duplicates;
     return;
   }
+  if (Unpersisted(key)) {  // a resend of a map waiting for the journal: try the disk now
+    ++counters_.duplicates;
+    RetryUnpersisted(now_s);
+    return;
+  }
   if (auto retry = retry_.find(key); retry != retry_.end()) {
     // The vehicle resends because the journal write failed: try again.
     const Retry again = retry->second;
@@ -268,6 +273,10 @@ void AggregatorNode::AddTile(const fleetmap::tempmap_tile_t& msg, const core::Te
 
 void AggregatorNode::Complete(const MapKey& key, const core::TempMap& map, int32_t tile_count,
                               double map_s, double now_s) {
+  if (!unpersisted_.empty()) {  // behind the maps waiting for the journal, in arrival order
+    KeepUnpersisted({key, map, tile_count, map_s}, now_s);
+    return;
+  }
   if (!held_.Waiting(key.vehicle_id) && limits_.AllowMerge(key.vehicle_id, map_s, now_s)) {
     Merge(key, map, tile_count, map_s, now_s);
     return;
@@ -296,15 +305,52 @@ void AggregatorNode::ReleaseHeld(double now_s) {
 
 void AggregatorNode::Merge(const MapKey& key, const core::TempMap& map, int32_t tile_count,
                            double map_s, double now_s) {
+  if (TryMerge(key, map, tile_count, map_s, now_s)) return;
+  limits_.RefundMerge(key.vehicle_id);  // a merge the disk refused costs the vehicle nothing
+  KeepUnpersisted({key, map, tile_count, map_s}, now_s);
+}
+
+bool AggregatorNode::Unpersisted(const MapKey& key) const {
+  return std::any_of(unpersisted_.begin(), unpersisted_.end(),
+                     [&](const HeldMap& m) { return m.key == key; });
+}
+
+void AggregatorNode::KeepUnpersisted(HeldMap map, double now_s) {
+  if (unpersisted_.empty()) next_persist_try_s_ = now_s + kPersistRetryS;
+  if (static_cast<int>(unpersisted_.size()) < options_.max_retry_maps) {
+    unpersisted_.push_back(std::move(map));
+    return;
+  }
+  Refuse("TEMPMAP: journal backlog full", counters_.persist_backlog_full,
+         std::to_string(options_.max_retry_maps) + " maps wait for the journal: " +
+             map.key.ToString() + " waits unacknowledged for the vehicle's resend");
+}
+
+void AggregatorNode::RetryUnpersisted(double now_s) {
+  while (!unpersisted_.empty()) {
+    const HeldMap& m = unpersisted_.front();
+    if (!TryMerge(m.key, m.map, m.tile_count, m.map_s, now_s)) {
+      next_persist_try_s_ = now_s + kPersistRetryS;
+      return;
+    }
+    unpersisted_.pop_front();
+  }
+}
+
+bool AggregatorNode::TryMerge(const MapKey& key, const core::TempMap& map, int32_t tile_count,
+                              double map_s, double now_s) {
   auto report = aggregator_.Submit(map, map_s);
   if (!report.ok() && report.status().code() == core::StatusCode::kIoError) {
     ++counters_.persist_errors;
+    if (!persist_failed_) {
+      log_.Warning("merge of " + key.ToString() +
+                   " not journaled, not acknowledged: " + report.status().ToString() +
+                   "; it and the maps after it are kept and merged in order once the journal "
+                   "writes again (tried every " +
+                   std::to_string(kPersistRetryS) + " s and at each resend)");
+    }
     persist_failed_ = true;
-    log_.Warning("merge of " + key.ToString() +
-                 " not journaled, not acknowledged (the vehicle will resend): " +
-                 report.status().ToString());
-    if (static_cast<int>(retry_.size()) < options_.max_retry_maps) retry_[key] = {map, tile_count};
-    return;
+    return false;
   }
   spool_.Remove(key);
   if (!report.ok()) {  // the store refused the commit: a bug, not the vehicle's fault
@@ -315,7 +361,7 @@ void AggregatorNode::Merge(const MapKey& key, const core::TempMap& map, int32_t 
     SendFinal(key, tile_count, fleetmap::tempmap_ack_t::REJECTED,
               "internal error: " + report.status().ToString(), aggregator_.store().version(),
               now_s);
-    return;
+    return true;
   }
   if (report->accepted) persist_failed_ = false;
   if (!report->warning.empty()) {
@@ -340,6 +386,7 @@ void AggregatorNode::Merge(const MapKey& key, const core::TempMap& map, int32_t 
     SendDelta(report->delta, now_s);
     SendCandidates(now_s);
   }
+  return true;
 }
 
 template <typename Message>
@@ -445,6 +492,7 @@ void AggregatorNode::OnRequest(const void* data, int size) {
 }
 
 void AggregatorNode::Tick(double now_s) {
+  if (!unpersisted_.empty() && now_s >= next_persist_try_s_) RetryUnpersisted(now_s);
   ReleaseHeld(now_s);
   for (const MapKey& key : acks_.Due(now_s)) SendPending(key, now_s);
   DropStale(now_s);

@@ -25,6 +25,7 @@
 // changes nothing.
 #pragma once
 
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -103,7 +104,17 @@ class AggregatorNode {
                 double now_s);
   void Merge(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
              double now_s);
+  // False when the journal write failed (nothing changed, nothing acknowledged).
+  bool TryMerge(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
+                double now_s);
   void ReleaseHeld(double now_s);
+  // Maps whose journal write failed wait, with every map completed after them, in arrival
+  // order (a replay of the uplink merges them in that order too), and are merged when the
+  // journal writes again: tried every kPersistRetryS and at each resend of one of them.
+  bool Unpersisted(const MapKey& key) const;
+  void KeepUnpersisted(HeldMap map, double now_s);
+  void RetryUnpersisted(double now_s);
+  static constexpr double kPersistRetryS = 1.0;
   void OnRequest(const void* data, int size);
   // A vehicle's CANDIDATES_FREE_<id>: the candidates it saw empty are dropped (a new version),
   // and the new set goes out.
@@ -142,7 +153,9 @@ class AggregatorNode {
   TileSpool spool_;
   RequestQueue requests_;
   std::map<MapKey, Incoming> incoming_;  // maps being assembled
-  std::map<MapKey, Retry> retry_;        // complete, but the journal write failed
+  std::map<MapKey, Retry> retry_;        // complete, over the rate with no room to hold it
+  std::deque<HeldMap> unpersisted_;      // complete, waiting for the journal (arrival order)
+  double next_persist_try_s_ = 0.0;
   bool persist_failed_ = false;
   double next_status_s_;
   double next_keyframe_s_;

@@ -28,6 +28,7 @@ NamedCounters Named(const NodeCounters& c) {
           {"pending_acks_sent", c.pending_acks_sent},
           {"merge_reports_sent", c.merge_reports_sent},
           {"persist_errors", c.persist_errors},
+          {"persist_backlog_full", c.persist_backlog_full},
           {"snapshot_errors", c.snapshot_errors},
           {"spool_errors", c.spool_errors},
           {"submit_errors", c.submit_errors},

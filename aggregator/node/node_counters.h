@@ -34,12 +34,13 @@ struct NodeCounters {
   int64_t acks_sent = 0;            // TEMPMAP_ACK messages, any outcome
   int64_t pending_acks_sent = 0;    // of which PENDING
   int64_t merge_reports_sent = 0;
-  int64_t persist_errors = 0;     // journal writes that failed: nothing acknowledged
-  int64_t snapshot_errors = 0;    // snapshots that failed after a journaled merge
-  int64_t spool_errors = 0;       // tiles that could not be kept on disk (not acknowledged)
-  int64_t submit_errors = 0;      // the aggregator refused a commit (a bug): rejected
-  int64_t publish_failures = 0;   // the transport refused a message
-  int64_t oversize_messages = 0;  // published messages over max_message_bytes
+  int64_t persist_errors = 0;        // journal writes that failed: nothing acknowledged
+  int64_t persist_backlog_full = 0;  // maps not kept to wait for the journal: wait for resend
+  int64_t snapshot_errors = 0;       // snapshots that failed after a journaled merge
+  int64_t spool_errors = 0;          // tiles that could not be kept on disk (not acknowledged)
+  int64_t submit_errors = 0;         // the aggregator refused a commit (a bug): rejected
+  int64_t publish_failures = 0;      // the transport refused a message
+  int64_t oversize_messages = 0;     // published messages over max_message_bytes
   // Bounds per vehicle (vehicle_limits.h) and the authentication (auth/verifier.h, whose
   // counters follow these in STATUS).
   int64_t oversize_received = 0;      // received messages over limits.max_received_bytes

@@ -33,9 +33,10 @@ struct AggregatorNodeOptions {
   // Rejected (vehicle, sequence) remembered to answer resends with DUPLICATE, >= 1. Merged
   // ones are always remembered: the current map's history holds them.
   int max_remembered_rejections = 10000;
-  // Maps whose journal write failed (a full disk), kept to merge when the vehicle resends,
-  // >= 1.
-  int max_retry_maps = 32;
+  // Maps whose journal write failed (a full disk), with the maps completed after them, kept
+  // in arrival order and merged once the journal writes again, >= 1. Beyond, a map waits
+  // unacknowledged for its vehicle's resend (and may then merge out of arrival order).
+  int max_retry_maps = 256;
   // Complete maps over their vehicle's merge rate, held to merge in order once it allows,
   // >= 1 (limits.merges_per_min); beyond, a map waits for the vehicle's resend.
   int max_held_maps = 128;

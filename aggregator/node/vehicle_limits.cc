@@ -77,6 +77,13 @@ bool VehicleLimits::AllowMerge(const std::string& vehicle, double map_s, double 
   return v != nullptr && TakeStamped(v->merges, map_s, now_s);
 }
 
+void VehicleLimits::RefundMerge(const std::string& vehicle) {
+  auto it = vehicles_.find(vehicle);
+  if (it == vehicles_.end()) return;
+  Bucket& b = it->second.merges;
+  b.tokens = std::min(options_.merge_burst, b.tokens + 1.0);
+}
+
 bool VehicleLimits::FirstThrottle(const std::string& vehicle) {
   if (throttled_.count(vehicle) || static_cast<int>(throttled_.size()) >= options_.max_vehicles)
     return false;

@@ -51,6 +51,8 @@ class VehicleLimits {
   bool AllowTile(const std::string& vehicle, double now_s);
   // False when `vehicle` is over its merge rate (the map is held); `map_s` is the map's stamp.
   bool AllowMerge(const std::string& vehicle, double map_s, double now_s);
+  // Gives back the merge AllowMerge granted (the merge did not happen: the disk refused it).
+  void RefundMerge(const std::string& vehicle);
   // True the first time `vehicle` is throttled, for a single log line per vehicle.
   bool FirstThrottle(const std::string& vehicle);
   // Vehicles throttled at least once since the start.

@@ -401,6 +401,46 @@ TEST(AggregatorNodeTest, AFailedJournalWriteAcknowledgesNothingAndTheResendMerge
   EXPECT_EQ(node->aggregator().store().version(), 1u);
 }
 
+// The disk fills while two vehicles' maps come in, then space returns: the maps that waited
+// are merged within a second, in the order they arrived, and the map is the one a node
+// without the fault made from the same maps (as a replay of the uplink log would).
+TEST(AggregatorNodeTest, AfterAFullDiskTheBacklogMergesInArrivalOrderAsWithoutTheFault) {
+  aggregator::testing::ScratchFolder folder;
+  RecordingPublisher out, reference_out;
+  auto node = MakeNode(&out, {}, folder.path());
+  auto reference = MakeNode(&reference_out, {}, "");
+  std::vector<std::pair<std::string, std::vector<std::vector<uint8_t>>>> maps;
+  for (int i = 0; i < 4; ++i) {
+    core::TempMap m = PalletMaps()[i];
+    m.vehicle_id = i % 2 ? "v2" : "v1";
+    maps.emplace_back(m.vehicle_id, TileMessages(m, kUtime + 20'000'000LL * i));
+  }
+  Feed(*node, maps[0].first, maps[0].second, 1.0);
+  {
+    aggregator::testing::FileSizeLimit full_disk(16);  // the journal cannot grow
+    for (int i = 1; i < 4; ++i) Feed(*node, maps[i].first, maps[i].second, 1.0 + i);
+    node->Tick(4.5);  // tried again: still full
+  }
+  EXPECT_EQ(out.Count(lcmtypes::kTempMapAckChannel), 1u);
+  EXPECT_EQ(node->state(), "persist_failed");
+  node->Tick(5.5);  // space is back: everything waiting merges at the next try
+  EXPECT_EQ(node->state(), "running");
+  for (int i = 0; i < 4; ++i) Feed(*reference, maps[i].first, maps[i].second, 1.0 + i);
+  const auto order = [](const RecordingPublisher& o) {
+    std::vector<std::string> keys;
+    for (const auto& a : o.Decoded<fleetmap::tempmap_ack_t>(lcmtypes::kTempMapAckChannel))
+      keys.push_back(a.vehicle_id + "#" + std::to_string(a.tempmap_seq) + ":" +
+                     std::to_string(a.outcome));
+    return keys;
+  };
+  EXPECT_EQ(order(out), order(reference_out));
+  ASSERT_EQ(order(out).size(), 4u);
+  const auto map_part = [](const std::string& line) {
+    return line.substr(0, line.find(" merged"));
+  };
+  EXPECT_EQ(map_part(node->FinalLine()), map_part(reference->FinalLine()));
+}
+
 TEST(AggregatorNodeTest, StatusEverySecondAndAKeyframeEveryPeriod) {
   RecordingPublisher out;
   AggregatorNodeOptions options;
