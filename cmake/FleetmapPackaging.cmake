@@ -108,7 +108,8 @@ if(TARGET fleetmap_lcmtypes_jar)
 endif()
 
 # A manual page per program, from its --help by help2man at build time (not when cross-
-# compiling: the programs do not run on the build host).
+# compiling: the programs do not run on the build host; nor in sanitizer and fuzzing
+# builds, which are not what ships and whose programs may report at exit).
 find_program(FLEETMAP_HELP2MAN help2man)
 set(fleetmap_man_dir "${PROJECT_BINARY_DIR}/packaging/man")
 add_custom_target(fleetmap_man_pages ALL)
@@ -116,7 +117,7 @@ add_dependencies(fleetmap_packaged fleetmap_man_pages)
 # fleetmap_man_page(COMPONENT NAME "what it is" COMMAND [VERSION]): COMMAND answers --help
 # (and --version, unless VERSION is given).
 function(fleetmap_man_page component name summary command)
-  if(CMAKE_CROSSCOMPILING)
+  if(CMAKE_CROSSCOMPILING OR FLEETMAP_SANITIZE OR FLEETMAP_FUZZ)
     return()
   endif()
   if(NOT FLEETMAP_HELP2MAN)
