@@ -179,38 +179,37 @@ void SyncFolder(const std::string& path) {
   }
 }
 
-// A format 1 journal's records, written as a format 2 journal renamed over it.
-core::Status Upgrade(const std::string& path, const JournalContents& found) {
+// A format 1 journal's records, written as a format 2 journal renamed over it; its length.
+core::Result<uint64_t> Upgrade(const std::string& path, const JournalContents& found) {
   const std::string tmp = path + ".upgrade";
+  uint64_t size = 0;
   {
     auto writer = JournalWriter::Open(tmp, JournalContents{});
     if (!writer.ok()) return writer.status();
     for (const auto& record : found.records) FLEETMAP_RETURN_IF_ERROR(writer->Append(record));
+    size = writer->size_bytes();
   }
   if (::rename(tmp.c_str(), path.c_str()) != 0)
     return core::IoError(path + ": cannot replace the format 1 journal: " + ErrnoText());
   SyncFolder(path);
-  return core::OkStatus();
+  return size;
 }
 
 }  // namespace
 
 core::Result<JournalWriter> JournalWriter::Open(const std::string& path,
                                                 const JournalContents& found) {
-  const bool exists = found.valid_bytes >= kJournalHeaderBytes ||
-                      (found.format_version == 1 && found.valid_bytes > 0);
-  if (exists && found.format_version == 1) FLEETMAP_RETURN_IF_ERROR(Upgrade(path, found));
+  // ReadJournal found good records (or at least a header) exactly when valid_bytes > 0.
+  uint64_t size = found.valid_bytes;
+  if (size > 0 && found.format_version == 1) FLEETMAP_ASSIGN_OR_RETURN(size, Upgrade(path, found));
   const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) return core::IoError(path + ": cannot open the journal: " + ErrnoText());
   JournalWriter writer(path, fd);
-  if (!exists) {
+  if (size == 0) {
     FLEETMAP_RETURN_IF_ERROR(writer.Create());
   } else {
     writer.records_ = static_cast<uint32_t>(found.records.size());
-    const uint64_t size = found.format_version == 1
-                              ? ::lseek(fd, 0, SEEK_END)  // just rewritten: all committed
-                              : found.valid_bytes;
-    FLEETMAP_RETURN_IF_ERROR(writer.CutTo(size));
+    FLEETMAP_RETURN_IF_ERROR(writer.CutTo(size));  // drops what was never committed
     if (::fsync(fd) != 0) return core::IoError(path + ": fsync failed: " + ErrnoText());
   }
   SyncFolder(path);

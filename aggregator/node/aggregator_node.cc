@@ -222,7 +222,7 @@ void AggregatorNode::AddTile(const fleetmap::tempmap_tile_t& msg, const core::Te
     return;
   }
   if (auto retry = retry_.find(key); retry != retry_.end()) {
-    // The vehicle resends because the journal write failed: try again.
+    // A map over the merge rate found no room to be held and waited for this resend.
     const Retry again = retry->second;
     retry_.erase(retry);
     Complete(key, again.map, again.tile_count, map_s, now_s);
@@ -281,18 +281,17 @@ void AggregatorNode::Complete(const MapKey& key, const core::TempMap& map, int32
     Merge(key, map, tile_count, map_s, now_s);
     return;
   }
+  const std::string over_rate = "vehicle '" + key.vehicle_id + "' completes more than " +
+                                std::to_string(options_.limits.merges_per_min) + " maps per minute";
   if (held_.Hold({key, map, tile_count, map_s})) {
     Refuse("TEMPMAP: merge rate", counters_.throttled_merges,
-           "vehicle '" + key.vehicle_id + "' completes more than " +
-               std::to_string(options_.limits.merges_per_min) + " maps per minute: " +
-               key.ToString() + " and its next maps are held, merged in order as the rate allows");
+           over_rate + ": " + key.ToString() +
+               " and its next maps are held, merged in order as the rate allows");
     return;
   }
   Refuse("TEMPMAP: held maps full", counters_.throttled_merges,
-         "vehicle '" + key.vehicle_id + "' completes more than " +
-             std::to_string(options_.limits.merges_per_min) + " maps per minute and " +
-             std::to_string(options_.max_held_maps) + " maps are held: " + key.ToString() +
-             " waits unacknowledged for a resend");
+         over_rate + " and " + std::to_string(options_.max_held_maps) +
+             " maps are held: " + key.ToString() + " waits unacknowledged for a resend");
   if (static_cast<int>(retry_.size()) < options_.max_retry_maps) retry_[key] = {map, tile_count};
 }
 
@@ -493,7 +492,8 @@ void AggregatorNode::OnRequest(const void* data, int size) {
 
 void AggregatorNode::Tick(double now_s) {
   if (!unpersisted_.empty() && now_s >= next_persist_try_s_) RetryUnpersisted(now_s);
-  ReleaseHeld(now_s);
+  // Held maps wait behind any map the journal refused, which keeps the arrival order.
+  if (unpersisted_.empty()) ReleaseHeld(now_s);
   for (const MapKey& key : acks_.Due(now_s)) SendPending(key, now_s);
   DropStale(now_s);
   if (options_.keyframe_period_s > 0 && now_s >= next_keyframe_s_) {

@@ -21,13 +21,18 @@ core::Status VehicleLimitOptions::Validate() const {
   return core::OkStatus();
 }
 
-bool VehicleLimits::Take(Bucket& b, double rate_per_s, double burst, double now_s) {
-  // A clock that went back refills nothing; one that jumped ahead fills the bucket once.
-  if (now_s > b.last_s) b.tokens = std::min(burst, b.tokens + (now_s - b.last_s) * rate_per_s);
-  b.last_s = now_s;
+bool VehicleLimits::Spend(Bucket& b, double elapsed_s, double rate_per_s, double burst) {
+  b.tokens = std::min(burst, b.tokens + elapsed_s * rate_per_s);
   if (b.tokens < 1.0) return false;
   b.tokens -= 1.0;
   return true;
+}
+
+bool VehicleLimits::Take(Bucket& b, double rate_per_s, double burst, double now_s) {
+  // A clock that went back refills nothing; one that jumped ahead fills the bucket once.
+  const double elapsed_s = std::max(0.0, now_s - b.last_s);
+  b.last_s = now_s;
+  return Spend(b, elapsed_s, rate_per_s, burst);
 }
 
 bool VehicleLimits::TakeStamped(Bucket& b, double stamp_s, double now_s) const {
@@ -36,16 +41,12 @@ bool VehicleLimits::TakeStamped(Bucket& b, double stamp_s, double now_s) const {
   const double host_s = std::max(0.0, now_s - b.last_s);
   const double stamps_s = b.stamped && std::isfinite(stamp_s) ? stamp_s - b.last_stamp_s : 0.0;
   const double elapsed_s = std::clamp(stamps_s, host_s, host_s * options_.max_replay_speed);
-  const double rate_per_s = options_.merges_per_min / 60.0;
-  b.tokens = std::min(options_.merge_burst, b.tokens + elapsed_s * rate_per_s);
   b.last_s = std::max(b.last_s, now_s);
   if (std::isfinite(stamp_s) && (!b.stamped || stamp_s > b.last_stamp_s)) {
     b.last_stamp_s = stamp_s;
     b.stamped = true;
   }
-  if (b.tokens < 1.0) return false;
-  b.tokens -= 1.0;
-  return true;
+  return Spend(b, elapsed_s, options_.merges_per_min / 60.0, options_.merge_burst);
 }
 
 VehicleLimits::Vehicle* VehicleLimits::Find(const std::string& vehicle, double now_s) {

@@ -70,6 +70,8 @@ class VehicleLimits {
     Bucket merges;
   };
   Vehicle* Find(const std::string& vehicle, double now_s);
+  // Refills `elapsed_s` worth of tokens (up to `burst`) and takes one if there is one.
+  static bool Spend(Bucket& b, double elapsed_s, double rate_per_s, double burst);
   static bool Take(Bucket& b, double rate_per_s, double burst, double now_s);
   bool TakeStamped(Bucket& b, double stamp_s, double now_s) const;
 

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include "drivers/sick/commands.h"
 #include "drivers/sick/scan_telegram_codec.h"
@@ -11,10 +12,6 @@
 
 namespace fleetmap::drivers::sick {
 namespace {
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // While a device spins up, its state is asked this often (the answer goes into the stats and
 // into the reason given when no scan came).
@@ -94,7 +91,7 @@ core::Status ScannerClient::ConnectAndStart() {
   }
   connection_.emplace(std::move(c).value());
   poll_outstanding_ = false;
-  connected_s_ = SteadyNowS();
+  connected_s_ = MonotonicNowS();
   last_scan_s_ = -1.0;
   next_state_query_s_ = connected_s_;
   garbage_at_last_scan_ = splitter_.stats().garbage_bytes;
@@ -107,7 +104,7 @@ void ScannerClient::Disconnect(const core::Status& why) {
   if (connection_) ++stats_.disconnects;
   connection_.reset();
   last_error_ = why;
-  next_connect_s_ = SteadyNowS() + backoff_s_;
+  next_connect_s_ = MonotonicNowS() + backoff_s_;
   backoff_s_ = std::min(2.0 * backoff_s_, options_.reconnect_backoff_max_s);
 }
 
@@ -133,7 +130,7 @@ std::optional<ReceivedScan> ScannerClient::Handle(const std::string& payload) {
     device_clock_.Map(scan.telegram.time_of_transmission_us, scan.host_receive_s);
     scan.stamp_s = device_clock_.ToHost(scan.telegram.time_since_startup_us);
     poll_outstanding_ = false;
-    last_scan_s_ = SteadyNowS();
+    last_scan_s_ = MonotonicNowS();
     garbage_at_last_scan_ = splitter_.stats().garbage_bytes;
     ++stats_.scans;
     backoff_s_ = options_.reconnect_backoff_initial_s;
@@ -146,9 +143,6 @@ std::optional<ReceivedScan> ScannerClient::Handle(const std::string& payload) {
                                            std::to_string(c->value) + ")");
   } else if (c.ok() && c->type == "sRA" && c->name == "SCdevicestate" && c->has_value) {
     stats_.device_state = c->value <= 2 ? static_cast<DeviceState>(c->value) : DeviceState::kError;
-  } else if (c.ok() && c->type == "sAN" && c->name == "SetAccessMode" && c->value == 0) {
-    ++stats_.login_refused;
-    last_error_ = core::FailedPrecondition("scanner refused the login (SetAccessMode)");
   } else {
     ++stats_.other_telegrams;
   }
@@ -177,9 +171,9 @@ core::Status ScannerClient::SendPendingRequests(double now) {
 }
 
 core::Status ScannerClient::ReadOnce(double wait_s) {
-  FLEETMAP_RETURN_IF_ERROR(SendPendingRequests(SteadyNowS()));
+  FLEETMAP_RETURN_IF_ERROR(SendPendingRequests(MonotonicNowS()));
   if (last_scan_s_ < 0.0)
-    wait_s = std::min(wait_s, std::max(0.0, next_state_query_s_ - SteadyNowS()));
+    wait_s = std::min(wait_s, std::max(0.0, next_state_query_s_ - MonotonicNowS()));
   uint8_t buffer[16384];
   core::Result<size_t> n = connection_->Read(buffer, sizeof(buffer), wait_s);
   if (!n.ok()) return n.status();
@@ -198,22 +192,23 @@ double ScannerClient::SilenceEnd() const {
 core::Status ScannerClient::CheckSilence(double now) const {
   if (now < SilenceEnd()) return core::OkStatus();
   const uint64_t garbage = splitter_.stats().garbage_bytes - garbage_at_last_scan_;
-  const std::string bytes =
-      garbage > 0 ? "; " + std::to_string(garbage) + " bytes meanwhile formed no telegram" : "";
-  if (last_scan_s_ < 0.0) {
-    return core::IoError("no scan within " + std::to_string(options_.first_scan_timeout_s) +
-                         " s of connecting (device state " + DeviceStateName(stats_.device_state) +
-                         bytes + ")");
-  }
-  return core::IoError("no valid scan for " + std::to_string(options_.silence_timeout_s) + " s" +
-                       (bytes.empty() ? "" : " (" + bytes.substr(2) + ")"));
+  std::vector<std::string> why;
+  if (last_scan_s_ < 0.0)
+    why.push_back("device state " + std::string(DeviceStateName(stats_.device_state)));
+  if (garbage > 0) why.push_back(std::to_string(garbage) + " bytes meanwhile formed no telegram");
+  std::string text =
+      last_scan_s_ < 0.0
+          ? "no scan within " + std::to_string(options_.first_scan_timeout_s) + " s of connecting"
+          : "no valid scan for " + std::to_string(options_.silence_timeout_s) + " s";
+  for (size_t i = 0; i < why.size(); ++i) text += (i == 0 ? " (" : "; ") + why[i];
+  return core::IoError(why.empty() ? text : text + ")");
 }
 
 core::Result<ReceivedScan> ScannerClient::NextScan(double timeout_s) {
-  const double deadline = SteadyNowS() + timeout_s;
+  const double deadline = MonotonicNowS() + timeout_s;
   while (true) {
     if (std::optional<ReceivedScan> scan = TakeBufferedScan()) return std::move(*scan);
-    const double now = SteadyNowS();
+    const double now = MonotonicNowS();
     if (now >= deadline) {
       return core::IoError(
           "no scan within " + std::to_string(timeout_s) + " s" +

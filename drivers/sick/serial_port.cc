@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 
 #include "drivers/sick/tcp_connection.h"
@@ -37,10 +36,6 @@ core::Result<speed_t> BaudConstant(int baud) {
     default:
       return core::InvalidArgument("unsupported baud rate " + std::to_string(baud));
   }
-}
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -87,11 +82,11 @@ core::Result<size_t> SerialPort::Read(uint8_t* buffer, size_t capacity, double t
 }
 
 core::Result<S300Telegram> S300SerialReader::Next(double timeout_s) {
-  const double deadline = SteadyNowS() + timeout_s;
+  const double deadline = MonotonicNowS() + timeout_s;
   uint8_t buffer[4096];
   while (true) {
     if (std::optional<S300Telegram> t = splitter_.Next()) return std::move(*t);
-    const double left = deadline - SteadyNowS();
+    const double left = deadline - MonotonicNowS();
     if (left <= 0.0) return core::IoError("no S300 telegram within the timeout");
     core::Result<size_t> n = port_.Read(buffer, sizeof(buffer), left);
     if (!n.ok()) return n.status();

@@ -1,16 +1,10 @@
 #include "drivers/sick/start_sequence.h"
 
-#include <chrono>
-
 #include "drivers/sick/commands.h"
 #include "drivers/sick/scan_telegram_codec.h"
 
 namespace fleetmap::drivers::sick {
 namespace {
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // What a request's reply is called: "sMN X" is answered by "sAN X", "sEN X" by "sEA X".
 struct ExpectedReply {
@@ -19,11 +13,10 @@ struct ExpectedReply {
 };
 
 ExpectedReply ReplyTo(const std::string& request) {
-  const std::string type = request.substr(0, 3);
-  const size_t name_end = request.find(' ', 4);
+  const ColaCommand c = SplitCommand(request).value();  // our own requests always split
   ExpectedReply e;
-  e.type = type == "sEN" ? "sEA" : type == "sRN" ? "sRA" : "sAN";
-  e.name = request.substr(4, name_end == std::string::npos ? std::string::npos : name_end - 4);
+  e.type = c.type == "sEN" ? "sEA" : c.type == "sRN" ? "sRA" : "sAN";
+  e.name = std::string(c.name);
   e.may_be_refused = e.name == "LMCstartmeas" || e.name == "Run";
   return e;
 }
@@ -44,11 +37,10 @@ std::string Refusal(const ParsedCommand& reply) {
 
 // Reads until the reply to `request` (or sFA) arrives; returns its refusal text, if any.
 core::Result<std::string> AwaitReply(TcpConnection& connection, TelegramSplitter& splitter,
-                                     const std::string& request,
+                                     const ExpectedReply& expected,
                                      const StartSequenceOptions& options,
                                      StartSequenceResult& result) {
-  const ExpectedReply expected = ReplyTo(request);
-  const double deadline = SteadyNowS() + options.reply_timeout_s;
+  const double deadline = MonotonicNowS() + options.reply_timeout_s;
   uint8_t buffer[4096];
   while (true) {
     while (std::optional<std::string> payload = splitter.Next()) {
@@ -71,7 +63,7 @@ core::Result<std::string> AwaitReply(TcpConnection& connection, TelegramSplitter
       }
       ++result.other_telegrams;  // an event or a late reply
     }
-    const double left = deadline - SteadyNowS();
+    const double left = deadline - MonotonicNowS();
     if (left <= 0.0) {
       return core::IoError("no reply to \"" + expected.name + "\" within " +
                            std::to_string(options.reply_timeout_s) + " s");
@@ -102,13 +94,14 @@ StartSequenceResult RunStartSequence(TcpConnection& connection, TelegramSplitter
     result.status =
         connection.WriteAll(FrameTelegram(options.protocol, request), options.reply_timeout_s);
     if (!result.status.ok()) return result;
-    core::Result<std::string> refusal = AwaitReply(connection, splitter, request, options, result);
+    const ExpectedReply expected = ReplyTo(request);
+    core::Result<std::string> refusal = AwaitReply(connection, splitter, expected, options, result);
     if (!refusal.ok()) {
       result.status = refusal.status();
       return result;
     }
     if (refusal->empty()) continue;
-    if (!ReplyTo(request).may_be_refused) {
+    if (!expected.may_be_refused) {
       result.status = core::FailedPrecondition("scanner " + *refusal);
       return result;
     }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -44,6 +45,10 @@ core::Status ConnectOne(int fd, const addrinfo* ai, double timeout_s) {
 }
 
 }  // namespace
+
+double MonotonicNowS() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 int PollTimeoutMs(double timeout_s) {
   if (!(timeout_s > 0.0)) return 0;

@@ -39,4 +39,7 @@ class TcpConnection {
 // Milliseconds for poll(): rounds up so that a positive timeout never becomes 0.
 int PollTimeoutMs(double timeout_s);
 
+// Seconds of the monotonic clock, for the timeouts of the driver and its emulator.
+double MonotonicNowS();
+
 }  // namespace fleetmap::drivers::sick

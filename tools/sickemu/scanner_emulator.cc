@@ -18,11 +18,8 @@ namespace fleetmap::sickemu {
 namespace {
 
 using drivers::sick::ColaProtocol;
+using drivers::sick::MonotonicNowS;
 using drivers::sick::TcpConnection;
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 constexpr double kWriteTimeoutS = 2.0;
 
@@ -157,7 +154,7 @@ bool ScannerEmulator::HandleRequest(TcpConnection& client, const std::string& pa
     return Reply(client, "sAN", "Run", 1);
   }
   if (c->type == "sRN" && name == "SCdevicestate") {
-    const bool busy = measuring_ && SteadyNowS() < ready_s_;
+    const bool busy = measuring_ && MonotonicNowS() < ready_s_;
     return Reply(client, "sRA", "SCdevicestate", busy ? 0 : 1);
   }
   const bool measurement = c->type == "sMN" && (name == "LMCstartmeas" || name == "LMCstopmeas");
@@ -170,7 +167,7 @@ bool ScannerEmulator::HandleRequest(TcpConnection& client, const std::string& pa
   }
   if (name == "LMCstartmeas") {
     ++stats_.start_requests;
-    if (!measuring_) ready_s_ = SteadyNowS() + options_.spin_up_s;
+    if (!measuring_) ready_s_ = MonotonicNowS() + options_.spin_up_s;
     measuring_ = true;
     return Reply(client, "sAN", "LMCstartmeas", 0);
   }
@@ -194,12 +191,12 @@ void ScannerEmulator::Serve(TcpConnection& client, bool first) {
   Session session;
   size_t sent_here = 0;
   const double period_s = source_->period_s() / options_.speed_factor;
-  double next_scan_s = SteadyNowS();
+  double next_scan_s = MonotonicNowS();
   uint8_t buffer[4096];
   while (!stop_) {
     const bool silent =
         first && options_.silent_after_scans > 0 && sent_here >= options_.silent_after_scans;
-    const double now = SteadyNowS();
+    const double now = MonotonicNowS();
     const bool producing = Producing(now) && !silent;
     if (producing && session.poll_pending) {
       session.poll_pending = false;
