@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "aggregator/node/aggregator_node.h"
@@ -234,7 +235,9 @@ int RunLive(const Args& args, const AggregatorProcessConfig& config) {
                  config.uplink_url.c_str(), config.downlink_url.c_str());
   }
   double next_progress_s = start_s + 5.0;
-  int64_t last_tiles = -1;
+  // A progress line when something moved since the last one: tiles arrived or maps were merged
+  // or rejected (a backlog still being merged after the last tile shows its end).
+  std::tuple<int64_t, int64_t, int64_t> last_seen{-1, -1, -1};
   while (!g_stop) {
     if ((*links)->Poll(100) < 0 && !g_stop) {
       std::fprintf(stderr, "fleetmap-aggregator: LCM receive failed on %s\n",
@@ -245,8 +248,11 @@ int RunLive(const Args& args, const AggregatorProcessConfig& config) {
     (*node)->Tick(now_s);
     if (args.duration_s >= 0 && now_s - start_s >= args.duration_s) break;
     if (!args.quiet && now_s >= next_progress_s) {
-      if ((*node)->counters().tiles_received != last_tiles) Progress(**node, now_s - start_s);
-      last_tiles = (*node)->counters().tiles_received;
+      const NodeCounters& c = (*node)->counters();
+      const std::tuple<int64_t, int64_t, int64_t> seen{c.tiles_received, c.maps_merged,
+                                                       c.maps_rejected};
+      if (seen != last_seen) Progress(**node, now_s - start_s);
+      last_seen = seen;
       next_progress_s = now_s + 5.0;
     }
   }

@@ -66,13 +66,19 @@ if [ "$loss" = 0 ]; then
   static_map=$("$bin/fleetmap-sim" --scenario "$root/tools/sim/worlds/livinglab/fleet_short.yaml" \
     --list-vehicles | sed -n 's/^map //p')
   live=$(grep '^aggregator: version' "$out/logs/aggregator.txt" | tail -1)
+  live_merged=$(sed -n 's/.* merged \([0-9]*\) .*/\1/p' <<<"$live")
   for s in 1 4 10; do
     "$bin/fleetmap-aggregator" --map "$static_map" --uplink-url "$url" \
-      --downlink-url "udpm://239.255.76.68:$((port + 6))?ttl=0" --quiet >"$out/logs/logplayer_$s.txt" 2>&1 &
+      --downlink-url "udpm://239.255.76.68:$((port + 6))?ttl=0" >"$out/logs/logplayer_$s.txt" 2>&1 &
     aggregator=$!
     sleep 1
     lcm-logplayer -s "$s" -e 'TEMPMAP_.*|MAP_REQUEST|CANDIDATES_FREE_.*|CANDIDATES_HELD_.*' -l "$url" "$out/logs/uplink.lcmlog"
-    sleep 2
+    # The aggregator may still be merging what came fastest (a sanitizer build is slow): stop
+    # it once its progress line counts as many merges as the live run, or after 60 s.
+    for _ in $(seq 120); do
+      grep -q ": version [0-9]*, merged $live_merged, " "$out/logs/logplayer_$s.txt" && break
+      sleep 0.5
+    done
     kill -INT "$aggregator"
     wait "$aggregator"
     played=$(grep '^aggregator: version' "$out/logs/logplayer_$s.txt" | tail -1)
