@@ -17,8 +17,11 @@ Signer::Signer(const std::optional<Key>& fleet_key, std::string sender, uint64_t
 }
 
 void Signer::Seal(const std::string& channel, std::vector<uint8_t>& message) {
-  if (!key_) return;
-  AppendTrailer(channel, sender_, next_seq_++, *key_, message);
+  if (key_) {
+    AppendTrailer(channel, sender_, next_seq_++, *key_, message);
+  } else if (!sender_.empty()) {
+    AppendIdentityTrailer(sender_, next_seq_++, message);
+  }
 }
 
 }  // namespace fleetmap::auth

@@ -1,6 +1,6 @@
 // What a process signs its messages with: its sender id, its key (derived from the fleet
-// key) and a sequence number that rises by one per message. Without a fleet key it signs
-// nothing and messages go out exactly as before.
+// key) and a sequence number that rises by one per message. Without a fleet key it still
+// names the sender and the sequence number (an identity trailer, trailer.h), unsigned.
 #pragma once
 
 #include <cstdint>
@@ -20,12 +20,12 @@ uint64_t FirstSequence(double wall_s);
 
 class Signer {
  public:
-  Signer() = default;  // signs nothing
+  Signer() = default;  // appends nothing
   Signer(const std::optional<Key>& fleet_key, std::string sender, uint64_t first_seq);
 
   bool enabled() const { return key_.has_value(); }
   const std::string& sender() const { return sender_; }
-  // Appends the trailer (trailer.h) for `channel`; nothing without a key.
+  // Appends the trailer (trailer.h) for `channel`; without a key the identity trailer.
   void Seal(const std::string& channel, std::vector<uint8_t>& message);
 
  private:

@@ -9,6 +9,7 @@ namespace fleetmap::auth {
 namespace {
 
 constexpr uint8_t kMagic[4] = {'F', 'M', 'A', '1'};
+constexpr uint8_t kIdentityMagic[4] = {'F', 'M', 'I', '1'};
 constexpr const char* kMacDomain = "fleetmap-auth-1";
 
 void ComputeMac(const std::string& channel, const uint8_t* signed_bytes, size_t signed_size,
@@ -27,27 +28,19 @@ void ComputeMac(const std::string& channel, const uint8_t* signed_bytes, size_t 
   sodium_memzero(&state, sizeof state);
 }
 
-}  // namespace
-
-void AppendTrailer(const std::string& channel, const std::string& sender, uint64_t seq,
-                   const Key& key, std::vector<uint8_t>& message) {
+void AppendSenderAndSequence(const std::string& sender, uint64_t seq,
+                             std::vector<uint8_t>& message) {
   const std::string id = sender.substr(0, kMaxSenderBytes);
   message.insert(message.end(), id.begin(), id.end());
   message.push_back(static_cast<uint8_t>(id.size()));
   for (int shift = 56; shift >= 0; shift -= 8)
     message.push_back(static_cast<uint8_t>(seq >> shift));
-  uint8_t mac[kMacBytes];
-  ComputeMac(channel, message.data(), message.size(), key, mac);
-  message.insert(message.end(), mac, mac + kMacBytes);
-  message.insert(message.end(), kMagic, kMagic + 4);
 }
 
-bool SplitTrailer(const void* data, size_t size, Trailer* out) {
-  const auto* bytes = static_cast<const uint8_t*>(data);
-  if (bytes == nullptr || size < kTrailerFixedBytes + 1) return false;
-  if (std::memcmp(bytes + size - 4, kMagic, 4) != 0) return false;
-  const size_t mac_at = size - 4 - kMacBytes;
-  const size_t seq_at = mac_at - 8;
+// Reads sender and sequence that end at `end` (the MAC or the magic): false if the sender's
+// length does not fit.
+bool ReadSenderAndSequence(const uint8_t* bytes, size_t end, Trailer* out) {
+  const size_t seq_at = end - 8;
   const size_t n = bytes[seq_at - 1];
   if (n == 0 || n > kMaxSenderBytes || seq_at - 1 < n) return false;
   const size_t sender_at = seq_at - 1 - n;
@@ -56,12 +49,50 @@ bool SplitTrailer(const void* data, size_t size, Trailer* out) {
   out->sender.assign(reinterpret_cast<const char*>(bytes + sender_at), n);
   out->seq = 0;
   for (size_t i = 0; i < 8; ++i) out->seq = (out->seq << 8) | bytes[seq_at + i];
+  return true;
+}
+
+}  // namespace
+
+void AppendTrailer(const std::string& channel, const std::string& sender, uint64_t seq,
+                   const Key& key, std::vector<uint8_t>& message) {
+  AppendSenderAndSequence(sender, seq, message);
+  uint8_t mac[kMacBytes];
+  ComputeMac(channel, message.data(), message.size(), key, mac);
+  message.insert(message.end(), mac, mac + kMacBytes);
+  message.insert(message.end(), kMagic, kMagic + 4);
+}
+
+void AppendIdentityTrailer(const std::string& sender, uint64_t seq, std::vector<uint8_t>& message) {
+  AppendSenderAndSequence(sender, seq, message);
+  message.insert(message.end(), kIdentityMagic, kIdentityMagic + 4);
+}
+
+bool SplitTrailer(const void* data, size_t size, Trailer* out) {
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  if (bytes == nullptr || size < kIdentityTrailerFixedBytes + 1) return false;
+  const uint8_t* magic = bytes + size - 4;
+  if (std::memcmp(magic, kIdentityMagic, 4) == 0) {
+    if (!ReadSenderAndSequence(bytes, size - 4, out)) return false;
+    out->mac = nullptr;
+    out->signed_size = 0;
+    return true;
+  }
+  if (size < kTrailerFixedBytes + 1 || std::memcmp(magic, kMagic, 4) != 0) return false;
+  const size_t mac_at = size - 4 - kMacBytes;
+  if (!ReadSenderAndSequence(bytes, mac_at, out)) return false;
   out->mac = bytes + mac_at;
   out->signed_size = mac_at;
   return true;
 }
 
+size_t PayloadSize(const void* data, size_t size) {
+  Trailer t;
+  return SplitTrailer(data, size, &t) ? t.payload_size : size;
+}
+
 bool MacMatches(const std::string& channel, const Trailer& trailer, const Key& key) {
+  if (!trailer.has_mac()) return false;
   uint8_t mac[kMacBytes];
   ComputeMac(channel, trailer.payload, trailer.signed_size, key, mac);
   return sodium_memcmp(mac, trailer.mac, kMacBytes) == 0;

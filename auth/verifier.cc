@@ -56,7 +56,7 @@ Verdict Verifier::Open(const std::string& channel, const void* data, int size,
     }
     return Verdict::kAccepted;
   }
-  if (!has_trailer) {
+  if (!has_trailer || !t.has_mac()) {
     ++counters_.auth_unsigned;
     return Verdict::kUnsigned;
   }

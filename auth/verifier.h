@@ -1,8 +1,9 @@
 // The receiving side: splits the trailer off a message and decides whether to believe it.
 // With a fleet key, a message is accepted only if it carries a trailer, its MAC is right
 // under its sender's key, its sender is the one the channel belongs to, and its sequence
-// number is new for that sender (replay_window.h). Without a key, a trailer is split off
-// unchecked and everything is accepted, as before authentication existed.
+// number is new for that sender (replay_window.h); an identity trailer (no MAC) is unsigned.
+// Without a key, either trailer is split off unchecked and everything is accepted, as before
+// authentication existed.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,7 @@ const char* RefusalText(Verdict verdict);
 
 struct AuthCounters {
   int64_t auth_verified = 0;      // accepted with a key: MAC, sender and sequence right
-  int64_t auth_unsigned = 0;      // no trailer while a key is configured
+  int64_t auth_unsigned = 0;      // no MAC (no trailer, or an identity one) while keyed
   int64_t auth_forged = 0;        // a trailer whose MAC is wrong (another key, altered bytes)
   int64_t auth_wrong_sender = 0;  // a right MAC, but the sender does not own the channel
   int64_t auth_replayed = 0;      // a sequence number seen before or older than the window

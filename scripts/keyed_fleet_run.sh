@@ -41,7 +41,7 @@ kill -INT $agg; wait $agg
 for p in "${loggers[@]}"; do kill -INT "$p"; done; wait "${loggers[@]}"
 duration=$(sed -n 's/^duration_s: *//p' "$scenario")
 "$bin/fleetmap-eval" --scenario "$scenario" --lcm-log "$out/sensor.lcmlog" --lcm-log "$out/uplink.lcmlog" --lcm-log "$out/downlink.lcmlog" \
-  --epoch "$epoch" --duration "$duration" "${vehicle_maps[@]}" --out "$out" --name keyed --quiet > "$out/figures.txt"
+  --epoch "$epoch" --duration "$duration" --key-file "$out/fleet.key" "${vehicle_maps[@]}" --out "$out" --name keyed --quiet > "$out/figures.txt"
 grep -E "f1|malformed|merged|same|equal" "$out/figures.txt" | head -20
 "$bin/fleetmap-aggregator" --map "$static_map" --key-file "$out/fleet.key" --replay "$out/uplink.lcmlog" --quiet | tail -1
 tail -2 "$out/aggregator.txt"; for f in "$out"/agent_*.txt; do echo "$f: $(tail -1 "$f")"; done

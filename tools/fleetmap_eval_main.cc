@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "aggregator/node/node_config.h"
+#include "auth/key.h"
 #include "core/codecs/map_render.h"
 #include "core/file_io.h"
 #include "core/map_io.h"
@@ -57,6 +58,10 @@ options:
   --duration S      recorded run: the simulated seconds it ran  [the scenario's duration]
   --vehicle-map ID=FILE  recorded run: a vehicle's final map (fleetmap-agent --final-map),
                     compared cell by cell with the fleet's final map (repeat the flag)
+  --key-file FILE   recorded run: the fleet's key; a message counts only if its MAC is right
+                    [none: a message counts if it names its channel's owner]
+  --aggregator-name NAME  recorded run: the aggregator's process name, the only sender
+                    whose word on the downlink counts                    [aggregator]
   --out DIR         output folder                                 [out/eval/<scenario name>]
   --name NAME       name used in the figure lines                 [the scenario's name]
   --quiet           no progress lines on stderr
@@ -71,6 +76,7 @@ struct Args {
   bool quiet = false;
   std::vector<std::string> lcm_logs, vehicle_maps;
   std::string epoch = "0", duration;
+  std::string key_file, aggregator_name = "aggregator";
 };
 
 bool Parse(int argc, char** argv, Args& a) {
@@ -94,6 +100,8 @@ bool Parse(int argc, char** argv, Args& a) {
         : arg == "--seed"              ? !value(a.seed)
         : arg == "--epoch"             ? !value(a.epoch)
         : arg == "--duration"          ? !value(a.duration)
+        : arg == "--key-file"          ? !value(a.key_file)
+        : arg == "--aggregator-name"   ? !value(a.aggregator_name)
         : arg == "--lcm-log"           ? (a.lcm_logs.emplace_back(), !value(a.lcm_logs.back()))
         : arg == "--vehicle-map" ? (a.vehicle_maps.emplace_back(), !value(a.vehicle_maps.back()))
         : arg == "--quiet"       ? (a.quiet = true, false)
@@ -286,6 +294,12 @@ int RunRecorded(const Args& args, const sim::World& world, const std::string& na
                 const std::string& out) {
   evallog::RecordedRunOptions options;
   options.epoch_s = Number(args.epoch);
+  options.aggregator_sender = args.aggregator_name;
+  if (!args.key_file.empty()) {
+    auto key = auth::ReadKeyFile(args.key_file);
+    if (!key.ok()) return Fail(key.status());
+    options.fleet_key = *key;
+  }
   const double duration =
       args.duration.empty() ? world.scenario().duration_s : Number(args.duration);
   options.duration_s = duration;

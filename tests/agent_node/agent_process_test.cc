@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "auth/trailer.h"
 #include "core/map_io.h"
 #include "tests/agent_node/node_test_util.h"
 #include "tests/agent_node/sensor_feed.h"
@@ -36,12 +37,14 @@ using fleetmap::testing::RunToExit;
 class Uplink {
  public:
   void OnPose(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-    auto m = lcmtypes::Decode<fleetmap::pose_with_covariance_t>(rbuf->data, rbuf->data_size);
+    auto m = lcmtypes::Decode<fleetmap::pose_with_covariance_t>(
+        rbuf->data, int(auth::PayloadSize(rbuf->data, rbuf->data_size)));
     ASSERT_TRUE(m.ok());
     poses.push_back(*m);
   }
   void OnStatus(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-    auto m = lcmtypes::Decode<fleetmap::status_t>(rbuf->data, rbuf->data_size);
+    auto m = lcmtypes::Decode<fleetmap::status_t>(
+        rbuf->data, int(auth::PayloadSize(rbuf->data, rbuf->data_size)));
     ASSERT_TRUE(m.ok());
     status.push_back(*m);
   }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "auth/trailer.h"
 #include "core/temp_map_tiles.h"
 #include "lcmtypes/convert.h"
 #include "lcmtypes/transport_convert.h"
@@ -37,7 +38,9 @@ class MemoryPublisher : public Publisher {
     std::vector<T> out;
     for (size_t i = from; i < sent.size(); ++i) {
       if (sent[i].channel != channel) continue;
-      auto m = lcmtypes::Decode<T>(sent[i].bytes.data(), static_cast<int>(sent[i].bytes.size()));
+      auto m = lcmtypes::Decode<T>(
+          sent[i].bytes.data(),
+          static_cast<int>(auth::PayloadSize(sent[i].bytes.data(), sent[i].bytes.size())));
       if (!m.ok()) throw std::runtime_error(channel + ": " + m.status().ToString());
       out.push_back(std::move(m).value());
     }

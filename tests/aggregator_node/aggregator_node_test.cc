@@ -8,6 +8,7 @@
 #include <set>
 
 #include "aggregator/node/map_hash.h"
+#include "auth/trailer.h"
 #include "core/map_replica.h"
 #include "fleetmap/map_request_t.hpp"
 #include "tests/aggregator/test_files.h"
@@ -49,7 +50,7 @@ void SendRequest(AggregatorNode& node, const std::vector<uint8_t>& bytes, double
 core::MapReplica Replay(const RecordingPublisher& out) {
   core::MapReplica replica;
   for (const SentMessage& m : out.sent) {
-    const int size = static_cast<int>(m.bytes.size());
+    const int size = static_cast<int>(auth::PayloadSize(m.bytes.data(), m.bytes.size()));
     if (m.channel == lcmtypes::kMapKeyframeChannel) {
       auto msg = lcmtypes::Decode<fleetmap::map_keyframe_t>(m.bytes.data(), size);
       auto tile = lcmtypes::FromMessage(*msg);
@@ -269,8 +270,9 @@ TEST(AggregatorNodeTest, RequestFromARetainedVersionGetsTheDeltasSince) {
   std::set<int32_t> bases;
   for (size_t i = before; i < out.sent.size(); ++i) {
     if (out.sent[i].channel != lcmtypes::kMapDeltaChannel) continue;
-    auto d = lcmtypes::Decode<fleetmap::map_delta_t>(out.sent[i].bytes.data(),
-                                                     int(out.sent[i].bytes.size()));
+    const std::vector<uint8_t>& bytes = out.sent[i].bytes;
+    auto d = lcmtypes::Decode<fleetmap::map_delta_t>(
+        bytes.data(), int(auth::PayloadSize(bytes.data(), bytes.size())));
     bases.insert(d->base_version);
   }
   EXPECT_EQ(bases, (std::set<int32_t>{1, 2, 3}));

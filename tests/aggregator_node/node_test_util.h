@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "aggregator/node/aggregator_node.h"
+#include "auth/trailer.h"
 #include "fleetmap/map_delta_t.hpp"
 #include "fleetmap/map_keyframe_t.hpp"
 #include "fleetmap/map_request_t.hpp"
@@ -40,7 +41,8 @@ class RecordingPublisher : public Publisher {
     std::vector<T> out;
     for (const SentMessage& m : sent) {
       if (m.channel != channel) continue;
-      auto msg = lcmtypes::Decode<T>(m.bytes.data(), static_cast<int>(m.bytes.size()));
+      auto msg = lcmtypes::Decode<T>(
+          m.bytes.data(), static_cast<int>(auth::PayloadSize(m.bytes.data(), m.bytes.size())));
       EXPECT_TRUE(msg.ok()) << channel << ": " << msg.status().ToString();
       if (msg.ok()) out.push_back(*msg);
     }

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "aggregator/node/map_hash.h"
+#include "auth/trailer.h"
 #include "core/map_io.h"
 #include "tests/aggregator/test_files.h"
 #include "tests/aggregator_node/fleet_test_world.h"
@@ -68,7 +69,8 @@ class AckReceiver {
   std::map<int, int> answers;  // acknowledgements seen per outcome
   bool pending_seen = false;   // a PENDING acknowledgement arrived
   void Handle(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-    auto ack = lcmtypes::Decode<fleetmap::tempmap_ack_t>(rbuf->data, int(rbuf->data_size));
+    auto ack = lcmtypes::Decode<fleetmap::tempmap_ack_t>(
+        rbuf->data, int(auth::PayloadSize(rbuf->data, rbuf->data_size)));
     ASSERT_TRUE(ack.ok()) << ack.status().ToString();
     if ((*rng_)() % 10 == 0) return;  // 10% of the acknowledgements are lost
     for (Vehicle& v : *vehicles_) {

@@ -96,10 +96,41 @@ TEST(VerifierTest, WithoutAKeyATrailerIsSplitOffAndAnythingPasses) {
   EXPECT_EQ(open_fleet.counters().auth_unverified, 1);
   EXPECT_FALSE(open_fleet.enabled());
 
-  Signer none;  // no key: nothing appended
+  Signer none;  // no key and no name: nothing appended
   std::vector<uint8_t> plain = kPayload;
   none.Seal("X", plain);
   EXPECT_EQ(plain, kPayload);
+}
+
+// Without a key a process still names itself and numbers its messages (an identity trailer):
+// a reader can tell who sent what, and a keyed receiver takes it for unsigned.
+TEST(VerifierTest, WithoutAKeyASenderNamesItselfAndAKeyedFleetTakesThatForUnsigned) {
+  Signer named(std::nullopt, "aggregator", 77);
+  std::vector<uint8_t> m = kPayload;
+  named.Seal("MAP_DELTA", m);
+  EXPECT_EQ(m.size(), kPayload.size() + kIdentityTrailerFixedBytes + 10);
+  Trailer t;
+  ASSERT_TRUE(SplitTrailer(m.data(), m.size(), &t));
+  EXPECT_FALSE(t.has_mac());
+  EXPECT_EQ(t.sender, "aggregator");
+  EXPECT_EQ(t.seq, 77u);
+  EXPECT_EQ(t.payload_size, kPayload.size());
+  EXPECT_EQ(PayloadSize(m.data(), m.size()), kPayload.size());
+  EXPECT_EQ(PayloadSize(kPayload.data(), kPayload.size()), kPayload.size());
+  named.Seal("MAP_DELTA", m = kPayload);
+  ASSERT_TRUE(SplitTrailer(m.data(), m.size(), &t));
+  EXPECT_EQ(t.seq, 78u);  // one more per message
+
+  Verifier open_fleet;
+  Opened o;
+  ASSERT_EQ(open_fleet.Open("MAP_DELTA", m.data(), static_cast<int>(m.size()), "", &o),
+            Verdict::kAccepted);
+  EXPECT_EQ(o.size, static_cast<int>(kPayload.size()));
+
+  Fleet f;
+  EXPECT_FALSE(MacMatches("MAP_DELTA", t, f.key));
+  EXPECT_EQ(f.Open("MAP_DELTA", m, "aggregator"), Verdict::kUnsigned);
+  EXPECT_EQ(f.verifier.counters().auth_unsigned, 1);
 }
 
 TEST(VerifierTest, ARestartedSenderStartsAboveWhereItStopped) {
@@ -138,6 +169,15 @@ TEST(TrailerTest, SplitRefusesWhatIsNoTrailer) {
   fake[100 - 4 - 32 - 8 - 1] = 200;                          // longer than allowed
   EXPECT_FALSE(SplitTrailer(fake.data(), fake.size(), &t));
   EXPECT_FALSE(SplitTrailer(nullptr, 0, &t));
+  std::vector<uint8_t> short_identity = {0, 0, 0, 0, 0, 0, 0, 0, 0, 'F', 'M', 'I', '1'};
+  EXPECT_FALSE(SplitTrailer(short_identity.data(), short_identity.size(), &t));
+  short_identity.insert(short_identity.begin(), 'x');
+  short_identity[1] = 2;  // a sender of 2 bytes, but only 1 before it
+  EXPECT_FALSE(SplitTrailer(short_identity.data(), short_identity.size(), &t));
+  short_identity[1] = 1;
+  EXPECT_TRUE(SplitTrailer(short_identity.data(), short_identity.size(), &t));
+  EXPECT_EQ(t.sender, "x");
+  EXPECT_EQ(t.payload_size, 0u);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <limits>
 #include <optional>
 
+#include "auth/replay_window.h"
+#include "auth/trailer.h"
 #include "auth/verifier.h"
 #include "core/map_replica.h"
 #include "fleetmap/divergence_t.hpp"
@@ -40,6 +42,12 @@ core::Status ReadLog(const std::string& path, std::vector<Event>& events) {
   return core::OkStatus();
 }
 
+// A message's LCM encoding, without its trailer once attributed.
+struct Payload {
+  const void* data = nullptr;
+  int size = 0;
+};
+
 // What the uplink said about one temporary map.
 struct TempMapSeen {
   int64_t first_tile_wall_utime = 0;
@@ -50,7 +58,7 @@ struct TempMapSeen {
 class Reader {
  public:
   Reader(const sim::World& world, const RecordedRunOptions& options)
-      : world_(world), options_(options) {
+      : world_(world), options_(options), verifier_(options.fleet_key) {
     for (size_t i = 0; i < world.scenario().vehicles.size(); ++i)
       vehicle_index_[world.scenario().vehicles[i].id] = i;
     // Version 0 is the static map, as the aggregator loads it.
@@ -59,17 +67,24 @@ class Reader {
   }
 
   void Handle(const Event& e) {
+    Payload p{e.data.data(), static_cast<int>(e.data.size())};
+    const std::optional<std::string> owner = Owner(e.channel);
+    if (owner) {
+      const char* refused = Attribute(e, *owner, &p);
+      if (refused != nullptr) return (void)++record_.fleet.messages_refused[refused];
+      ++record_.fleet.attributed_messages;
+    }
     ChannelTraffic& t = record_.fleet.traffic[e.channel];
     ++t.messages;
     t.bytes += static_cast<int64_t>(e.data.size());
     if (e.channel == lcmtypes::kTempMapAckChannel) return;
-    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kTempMapPrefix)) return OnTempMapTile(e);
-    if (e.channel == lcmtypes::kMergeReportChannel) return OnMergeReport(e);
+    if (lcmtypes::IsTempMapTileChannel(e.channel)) return OnTempMapTile(e, p);
+    if (e.channel == lcmtypes::kMergeReportChannel) return OnMergeReport(e, p);
     if (e.channel == lcmtypes::kMapKeyframeChannel || e.channel == lcmtypes::kMapDeltaChannel)
-      return OnMapTile(e);
-    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kDivergencePrefix)) return OnDivergence(e);
-    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kPosePrefix)) return OnPose(e);
-    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kAgentStatusPrefix)) return OnAgentStatus(e);
+      return OnMapTile(e, p);
+    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kDivergencePrefix)) return OnDivergence(p);
+    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kPosePrefix)) return OnPose(e, p);
+    if (lcmtypes::HasPrefix(e.channel, lcmtypes::kAgentStatusPrefix)) return OnAgentStatus(e, p);
   }
 
   RecordedRun Finish(int64_t first_wall, int64_t last_wall) {
@@ -102,13 +117,46 @@ class Reader {
  private:
   double SimTime(int64_t utime) const { return lcmtypes::FromUtime(utime) - options_.epoch_s; }
 
+  // The process a channel belongs to: "" for any member of the fleet (MAP_REQUEST); none for
+  // channels no fleet process sends (the sensor group).
+  std::optional<std::string> Owner(const std::string& channel) const {
+    using namespace lcmtypes;
+    if (channel == kTempMapAckChannel || channel == kMapDeltaChannel ||
+        channel == kMapKeyframeChannel || channel == kMergeReportChannel ||
+        channel == kMapCandidatesChannel || channel == StatusChannel(options_.aggregator_sender))
+      return options_.aggregator_sender;
+    if (channel == kMapRequestChannel) return std::string();
+    for (const char* prefix : {kAgentStatusPrefix, kPosePrefix, kDivergencePrefix,
+                               kCandidatesFreePrefix, kCandidatesHeldPrefix}) {
+      if (HasPrefix(channel, prefix)) return ChannelSuffix(channel, prefix);
+    }
+    if (IsTempMapTileChannel(channel)) return ChannelSuffix(channel, kTempMapPrefix);
+    return std::nullopt;
+  }
+
+  // Null if the message is `owner`'s (and `p` then holds it without its trailer), else the
+  // reason it is not.
+  const char* Attribute(const Event& e, const std::string& owner, Payload* p) {
+    if (verifier_.enabled()) {
+      auth::Opened opened;
+      const auth::Verdict v = verifier_.Open(e.channel, p->data, p->size, owner, &opened);
+      if (v != auth::Verdict::kAccepted) return auth::VerdictName(v);
+      *p = {opened.data, opened.size};
+      return nullptr;
+    }
+    // Without the key a trailer's MAC cannot be checked: its name and number are taken as
+    // an identity trailer's are.
+    auth::Trailer t;
+    if (!auth::SplitTrailer(p->data, static_cast<size_t>(p->size), &t)) return "unnamed";
+    if (!owner.empty() && t.sender != owner) return auth::VerdictName(auth::Verdict::kWrongSender);
+    if (!windows_[t.sender].Accept(t.seq)) return auth::VerdictName(auth::Verdict::kReplayed);
+    *p = {t.payload, static_cast<int>(t.payload_size)};
+    return nullptr;
+  }
+
   template <typename T>
-  std::optional<T> DecodeOrCount(const Event& e) {
-    // A keyed fleet's messages end with an authentication trailer (docs/security.md): the
-    // evaluation reads a log it trusts and splits it off unchecked.
-    auth::Opened opened;
-    unverified_.Open(e.channel, e.data.data(), static_cast<int>(e.data.size()), "", &opened);
-    auto m = lcmtypes::Decode<T>(opened.data, opened.size);
+  std::optional<T> DecodeOrCount(const Payload& p) {
+    auto m = lcmtypes::Decode<T>(p.data, p.size);
     if (!m.ok()) {
       ++record_.fleet.malformed_messages;
       return std::nullopt;
@@ -133,8 +181,8 @@ class Reader {
     }
   }
 
-  void OnTempMapTile(const Event& e) {
-    auto msg = DecodeOrCount<fleetmap::tempmap_tile_t>(e);
+  void OnTempMapTile(const Event& e, const Payload& p) {
+    auto msg = DecodeOrCount<fleetmap::tempmap_tile_t>(p);
     if (!msg) return;
     auto tile = lcmtypes::FromMessage(*msg);
     if (!tile.ok()) {
@@ -151,8 +199,8 @@ class Reader {
     seen.end_s = tile->end_s - options_.epoch_s;
   }
 
-  void OnMergeReport(const Event& e) {
-    auto msg = DecodeOrCount<fleetmap::merge_report_t>(e);
+  void OnMergeReport(const Event& e, const Payload& p) {
+    auto msg = DecodeOrCount<fleetmap::merge_report_t>(p);
     if (!msg) return;
     const auto seen = temp_maps_.find(std::make_pair(msg->vehicle_id, msg->tempmap_seq));
     const auto vehicle = vehicle_index_.find(msg->vehicle_id);
@@ -184,11 +232,11 @@ class Reader {
       merge_closed_wall_[msg->new_version] = m.first_tile_wall_utime;
   }
 
-  void OnMapTile(const Event& e) {
+  void OnMapTile(const Event& e, const Payload& p) {
     const int32_t before = replica_.version();
     core::Result<bool> applied = false;
     if (e.channel == lcmtypes::kMapKeyframeChannel) {
-      auto msg = DecodeOrCount<fleetmap::map_keyframe_t>(e);
+      auto msg = DecodeOrCount<fleetmap::map_keyframe_t>(p);
       if (!msg) return;
       auto tile = lcmtypes::FromMessage(*msg);
       if (!tile.ok()) return (void)++record_.fleet.map_messages_refused;
@@ -196,7 +244,7 @@ class Reader {
       if (tile->version <= replica_.version()) return;
       applied = replica_.AddKeyframeTile(*tile);
     } else {
-      auto msg = DecodeOrCount<fleetmap::map_delta_t>(e);
+      auto msg = DecodeOrCount<fleetmap::map_delta_t>(p);
       if (!msg) return;
       auto tile = lcmtypes::FromMessage(*msg);
       if (!tile.ok()) return (void)++record_.fleet.map_messages_refused;
@@ -209,8 +257,8 @@ class Reader {
       record_.run.RecordVersion(replica_.map());
   }
 
-  void OnDivergence(const Event& e) {
-    auto msg = DecodeOrCount<fleetmap::divergence_t>(e);
+  void OnDivergence(const Payload& p) {
+    auto msg = DecodeOrCount<fleetmap::divergence_t>(p);
     if (!msg) return;
     const double t = SimTime(msg->utime);
     double& next = next_divergence_s_[msg->vehicle_id];
@@ -220,8 +268,8 @@ class Reader {
                                       msg->d, msg->state == fleetmap::divergence_t::BUILDING});
   }
 
-  void OnAgentStatus(const Event& e) {
-    auto msg = DecodeOrCount<fleetmap::status_t>(e);
+  void OnAgentStatus(const Event& e, const Payload& p) {
+    auto msg = DecodeOrCount<fleetmap::status_t>(p);
     if (!msg) return;
     int64_t cpu_us = -1, rss_kb = -1;
     const size_t n = std::min(msg->counter_names.size(), msg->counter_values.size());
@@ -241,8 +289,8 @@ class Reader {
     u.max_rss_kb = std::max(u.max_rss_kb, rss_kb);
   }
 
-  void OnPose(const Event& e) {
-    auto msg = DecodeOrCount<fleetmap::pose_with_covariance_t>(e);
+  void OnPose(const Event& e, const Payload& p) {
+    auto msg = DecodeOrCount<fleetmap::pose_with_covariance_t>(p);
     if (!msg) return;
     auto pose = lcmtypes::FromMessage(*msg);
     const auto vehicle = vehicle_index_.find(msg->vehicle_id);
@@ -269,7 +317,8 @@ class Reader {
   std::map<std::string, std::map<int32_t, int64_t>> version_first_wall_;
   std::map<std::string, double> next_divergence_s_, next_pose_s_;
   RecordedRun record_;
-  auth::Verifier unverified_;  // no key: only splits trailers off
+  auth::Verifier verifier_;                            // with the fleet key, if there is one
+  std::map<std::string, auth::ReplayWindow> windows_;  // without it: per named sender
 };
 
 }  // namespace
@@ -286,7 +335,19 @@ core::Result<RecordedRun> ReadRecordedRun(const std::vector<std::string>& log_pa
   });
   Reader reader(world, options);
   for (const Event& e : events) reader.Handle(e);
-  return reader.Finish(events.front().wall_utime, events.back().wall_utime);
+  RecordedRun run = reader.Finish(events.front().wall_utime, events.back().wall_utime);
+  int refused = 0;
+  for (const auto& [reason, n] : run.fleet.messages_refused) refused += n;
+  if (run.fleet.attributed_messages == 0 && refused > 0) {
+    return core::FailedPrecondition(
+        "none of the " + std::to_string(refused) +
+        " messages on the fleet's channels can be attributed to its sender (" +
+        (options.fleet_key ? "is it this fleet's key?"
+                           : "recorded from processes that do not "
+                             "name themselves?") +
+        "): nothing to score");
+  }
+  return run;
 }
 
 }  // namespace fleetmap::evallog
@@ -337,6 +398,11 @@ std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigur
   kv.emplace_back("fleet.vehicles_holding_final_version", std::to_string(holding));
   kv.emplace_back("fleet.malformed_messages", std::to_string(f.malformed_messages));
   kv.emplace_back("fleet.map_messages_refused", std::to_string(f.map_messages_refused));
+  int refused = 0;
+  for (const auto& [reason, n] : f.messages_refused) refused += n;
+  kv.emplace_back("fleet.messages_refused", std::to_string(refused));
+  for (const auto& [reason, n] : f.messages_refused)
+    kv.emplace_back("fleet.messages_refused." + reason, std::to_string(n));
   // The agents' cost, from their STATUS: only agents seen over more than a few seconds.
   double cpu_share_sum = 0.0, cpu_per_sim_sum = 0.0;
   int agents = 0;

@@ -7,11 +7,20 @@
 // Times: the simulator stamps messages with epoch + simulated time (fleetmap-sim --epoch), so
 // message stamps minus the epoch are simulated seconds; latencies and rates use the logger's
 // receive stamps (wall clock), since the simulator may run faster than real time.
+//
+// Whose word counts: a message on a channel that belongs to a process (the downlink to the
+// aggregator, TEMPMAP_<id>, POSE_<id>, ... to vehicle <id>) is read only if its trailer
+// (auth/trailer.h) names that process with a sequence number not seen before, and, with the
+// fleet key, only if its MAC is right. Everything else on those channels (another fleet, a
+// test tool, a copy of an old message, malformed bytes) is counted by reason and left out,
+// so that it changes no figure.
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "auth/key.h"
 #include "tools/eval/run_record.h"
 #include "tools/sim/world.h"
 
@@ -24,6 +33,8 @@ struct RecordedRunOptions {
   // Simulated seconds the run covered: rates per channel are per simulated second (what a
   // fleet sends in real time, whatever the simulator's speed). 0: per wall-clock second.
   double duration_s = 0.0;
+  std::string aggregator_sender = "aggregator";  // the aggregator's process name
+  std::optional<auth::Key> fleet_key;            // the run's fleet key, if it had one
 };
 
 struct ChannelTraffic {
@@ -50,7 +61,11 @@ struct FleetFigures {
   int32_t final_version = -1;                              // from MAP_DELTA / MAP_KEYFRAME
   int malformed_messages = 0;                              // logged but not decodable
   int map_messages_refused = 0;                            // decodable map tiles refused
-  std::map<std::string, AgentUsage> agent_usage;           // by process (agent_<id>)
+  // Messages not attributed to their channel's owner, by reason (auth::VerdictName, and
+  // "unnamed": no trailer names a sender); neither read nor counted in `traffic`.
+  std::map<std::string, int> messages_refused;
+  int attributed_messages = 0;  // messages read on channels that belong to a process
+  std::map<std::string, AgentUsage> agent_usage;  // by process (agent_<id>)
 };
 
 struct RecordedRun {
@@ -60,6 +75,8 @@ struct RecordedRun {
 
 // Reads every log (any order; events are merged by receive time). The static map of `world`
 // is version 0; MAP_KEYFRAME and MAP_DELTA rebuild every later version as a vehicle would.
+// FailedPrecondition when the fleet's channels hold messages but none can be attributed (a
+// log of processes that do not name themselves, or read with another fleet's key).
 core::Result<RecordedRun> ReadRecordedRun(const std::vector<std::string>& log_paths,
                                           const sim::World& world,
                                           const RecordedRunOptions& options);

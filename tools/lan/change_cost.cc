@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "auth/trailer.h"
 #include "fleetmap/map_delta_t.hpp"
 #include "fleetmap/map_keyframe_t.hpp"
 #include "lcmtypes/convert.h"
@@ -39,7 +40,7 @@ ChangeCost MeasureChangeCost(const std::vector<LogMessage>& messages) {
   std::map<int32_t, VersionTiles> deltas, keyframes;
   ChangeCost cost;
   for (const LogMessage& m : messages) {
-    const int size = static_cast<int>(m.data.size());
+    const int size = static_cast<int>(auth::PayloadSize(m.data.data(), m.data.size()));
     if (m.channel == lcmtypes::kMapDeltaChannel) {
       auto d = lcmtypes::Decode<fleetmap::map_delta_t>(m.data.data(), size);
       if (d.ok()) Add(deltas[d->new_version], d->tile_index, d->tile_count, m.data.size());

@@ -2,6 +2,7 @@
 
 #include <unordered_map>
 
+#include "auth/trailer.h"
 #include "fleetmap/map_delta_t.hpp"
 #include "fleetmap/map_keyframe_t.hpp"
 #include "fleetmap/tempmap_tile_t.hpp"
@@ -20,7 +21,8 @@ const char* GroupOf(const std::string& channel) {
 
 // The codec frame a map message carries.
 core::Result<std::vector<uint8_t>> FrameOf(const std::string& group, const LogMessage& m) {
-  const int size = static_cast<int>(m.data.size());
+  // The message without the trailer that names its sender (auth/trailer.h).
+  const int size = static_cast<int>(auth::PayloadSize(m.data.data(), m.data.size()));
   if (group == "TEMPMAP") {
     auto t = lcmtypes::Decode<fleetmap::tempmap_tile_t>(m.data.data(), size);
     if (!t.ok()) return t.status();

@@ -1,5 +1,6 @@
 #include "tools/lan/status_summary.h"
 
+#include "auth/trailer.h"
 #include "fleetmap/status_t.hpp"
 #include "lcmtypes/convert.h"
 
@@ -18,7 +19,8 @@ StatusSummary SummarizeStatus(const std::vector<LogMessage>& messages, int64_t u
   StatusSummary summary;
   for (const LogMessage& m : messages) {
     if (!lcmtypes::HasPrefix(m.channel, lcmtypes::kStatusPrefix)) continue;
-    auto status = lcmtypes::Decode<fleetmap::status_t>(m.data.data(), int(m.data.size()));
+    auto status = lcmtypes::Decode<fleetmap::status_t>(
+        m.data.data(), int(auth::PayloadSize(m.data.data(), m.data.size())));
     if (!status.ok() || status->counter_names.size() != status->counter_values.size()) {
       ++summary.malformed;
       continue;

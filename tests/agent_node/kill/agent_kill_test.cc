@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "aggregator/aggregator.h"
+#include "auth/trailer.h"
 #include "core/map_io.h"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "tests/agent_node/node_test_util.h"
@@ -38,7 +39,8 @@ std::string Url(int group, int port) {
 template <typename T>
 struct Heard {
   void On(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-    auto m = lcmtypes::Decode<T>(rbuf->data, static_cast<int>(rbuf->data_size));
+    auto m = lcmtypes::Decode<T>(rbuf->data,
+                                 static_cast<int>(auth::PayloadSize(rbuf->data, rbuf->data_size)));
     ASSERT_TRUE(m.ok()) << channel;
     messages.push_back(std::move(m).value());
   }
