@@ -167,6 +167,62 @@ core::Result<JournalContents> ReadJournal(const std::string& path, int64_t max_b
   return c;
 }
 
+core::Result<JournalSalvage> SalvageJournal(const std::string& path, int64_t max_bytes) {
+  std::string bytes;
+  FLEETMAP_ASSIGN_OR_RETURN(bytes, core::ReadFileBytes(path, max_bytes));
+  const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
+  const size_t size = bytes.size();
+  JournalSalvage s;
+  if (size < kJournalV1HeaderBytes || std::memcmp(data, kHeaderMagic, 4) != 0) {
+    s.damage = "no journal header";
+    return s;
+  }
+  core::ByteReader version_reader(data + 4, 4);
+  const uint32_t version = version_reader.U32();
+  uint64_t offset = kJournalV1HeaderBytes;
+  if (version == kJournalFormatVersion) {
+    offset = kJournalHeaderBytes;
+    if (size >= kJournalHeaderBytes) {
+      core::ByteReader block(data + kJournalV1HeaderBytes, 16);
+      block.U64();
+      const uint32_t committed = block.U32(), crc = block.U32();
+      if (core::Crc32(data + kJournalV1HeaderBytes, 12) == crc) s.committed_records = committed;
+    }
+  } else if (version != 1) {
+    s.damage = "journal format " + std::to_string(version) + " is not one this version reads";
+    return s;
+  }
+  while (offset < size && (s.committed_records < 0 ||
+                           static_cast<int64_t>(s.records.size()) < s.committed_records)) {
+    const std::string where =
+        "record " + std::to_string(s.records.size() + 1) + " at byte " + std::to_string(offset);
+    if (offset + kJournalRecordHeaderBytes > size) {
+      s.damage = where + " is cut off";
+      break;
+    }
+    const uint8_t* p = data + offset;
+    core::ByteReader r(p + 4, 8);
+    const uint32_t length = r.U32(), payload_crc = r.U32();
+    const uint64_t end = offset + kJournalRecordHeaderBytes + length;
+    if (std::memcmp(p, kRecordMagic, 4) != 0 || length > kMaxJournalRecordBytes || end > size) {
+      s.damage =
+          where + (std::memcmp(p, kRecordMagic, 4) != 0 ? " has no record magic" : " is cut off");
+      break;
+    }
+    if (core::Crc32(p + kJournalRecordHeaderBytes, length) != payload_crc) {
+      s.damage = where + " fails its CRC";
+      break;
+    }
+    s.records.emplace_back(p + kJournalRecordHeaderBytes, p + end - offset);
+    offset = end;
+  }
+  if (s.damage.empty() && s.committed_records > static_cast<int64_t>(s.records.size()))
+    s.damage = "the file ends after " + std::to_string(s.records.size()) + " records";
+  if (s.damage.empty() && s.committed_records < 0 && version == kJournalFormatVersion)
+    s.damage = "the commit block at byte 8 fails its check";
+  return s;
+}
+
 namespace {
 
 // Makes the file's directory entry durable (a new or renamed journal).

@@ -42,6 +42,16 @@ struct JournalContents {
 // NotFound when the file does not exist; DataLoss for corruption; OutOfRange over max_bytes.
 core::Result<JournalContents> ReadJournal(const std::string& path, int64_t max_bytes);
 
+// What can still be read from a damaged journal, for an operator's recovery: the records
+// from the first up to the first one that is not intact (or up to the last committed one).
+struct JournalSalvage {
+  std::vector<std::vector<uint8_t>> records;  // intact payloads, in order
+  int64_t committed_records = -1;             // as the commit block says; -1 when it cannot be read
+  std::string damage;  // where reading stopped, and why; empty: nothing damaged
+};
+// NotFound when the file does not exist; OutOfRange over max_bytes; never DataLoss.
+core::Result<JournalSalvage> SalvageJournal(const std::string& path, int64_t max_bytes);
+
 class JournalWriter {
  public:
   // Opens the journal ReadJournal found (`found`), cut to its good records so that a torn

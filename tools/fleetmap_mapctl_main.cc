@@ -1,5 +1,6 @@
 // fleetmap-mapctl: the map's life on the server, from the aggregator's state folder
-// (snapshot + journal): export, history, rollback, reset a region, promote standing changes.
+// (snapshot + journal): export, history, rollback, reset a region, promote standing changes,
+// recover what a damaged folder still holds.
 // The algorithms are in tools/mapctl (library fleetmap_mapctl); this is files and flags.
 // See --help and docs/operations.md.
 #include <chrono>
@@ -18,6 +19,7 @@
 #include "tools/mapctl/map_edits.h"
 #include "tools/mapctl/merge_summary.h"
 #include "tools/mapctl/state_history.h"
+#include "tools/mapctl/state_recovery.h"
 #include "tools/mapctl/state_writer.h"
 
 namespace {
@@ -37,6 +39,8 @@ The map's life, from the aggregator's state folder (snapshot.fms + journal.fmj):
   promote --out-map NEW.yaml (--since-version V | --older-than S)
                                   obstacles standing since version V / for S seconds become
                                   part of a new static map
+  recover [--dry-run]             after DATA_LOSS at the aggregator's start: keep what can
+                                  still be read, report what is gone
 
 Common flags:
   --state-dir DIR   the aggregator's state folder (default /var/lib/fleetmap/aggregator)
@@ -44,8 +48,8 @@ Common flags:
                     (default /var/lib/fleetmap/maps/static.yaml)
   -h, --help        this text; COMMAND --help: the command's own
   --version         the version
-rollback, reset-region and promote refuse to run while an aggregator holds the folder's lock
-(stop it first) and keep the old snapshot and journal in DIR/backup/.
+rollback, reset-region, promote and recover refuse to run while an aggregator holds the
+folder's lock (stop it first) and keep the old snapshot and journal in DIR/backup/.
 Exit status: 0 done, 1 bad or corrupt data or a locked folder, 2 bad usage.
 )";
 
@@ -82,6 +86,16 @@ NEW.yaml + NEW.pgm. The history is rewritten without those cells (versions kept)
 new map. Then run the aggregator with --map NEW.yaml, and give the vehicles NEW.yaml as
 their --map. Refused while an aggregator runs on the folder; the old files go to
 DIR/backup/.
+)";
+
+constexpr const char* kRecoverHelp = R"(usage: fleetmap-mapctl recover [--dry-run]
+For a state folder the aggregator refuses to start on (DATA_LOSS: a damaged journal or
+snapshot). Keeps what can still be read: the snapshot's merges, then the journal's intact
+records in order up to the first one that is not. Writes that as the new state and moves the
+damaged files to DIR/backup/recover-vN-TIME/ (nothing is deleted). Prints the version
+recovered and how many acknowledged merges after it are gone (the journal's commit block
+says how many it held). --dry-run: only print. A folder with nothing damaged is left as it is.
+Exit status: 0 recovered (or nothing to recover), 1 unreadable folder or a write failed.
 )";
 
 struct Args {
@@ -296,6 +310,64 @@ int Promote(const Args& a) {
   return Replace(a, *promoted, "promote", last);
 }
 
+void PrintRecovery(const mapctl::Recovery& r) {
+  if (!r.snapshot_damage.empty())
+    std::printf("snapshot: damaged (%s): its merges cannot be recovered\n",
+                r.snapshot_damage.c_str());
+  else if (r.history.snapshot_found)
+    std::printf("snapshot: version %llu, whole\n", (unsigned long long)r.history.snapshot_version);
+  if (!r.journal_damage.empty()) std::printf("journal: damaged (%s)\n", r.journal_damage.c_str());
+  std::printf(
+      "journal: %d record(s) intact of %s committed\n", r.journal_read,
+      r.journal_committed < 0 ? "an unknown number" : std::to_string(r.journal_committed).c_str());
+  std::printf("recovered: version %llu (%d merges from the snapshot, %d from the journal)\n",
+              (unsigned long long)r.history.version(),
+              static_cast<int>(r.history.commits.size()) - r.history.journal_records,
+              r.history.journal_records);
+  if (r.versions_lost > 0)
+    std::printf("lost: %lld acknowledged merge(s) after version %llu\n", (long long)r.versions_lost,
+                (unsigned long long)r.history.version());
+  else if (r.versions_lost < 0)
+    std::printf("lost: an unknown number of acknowledged merges after version %llu\n",
+                (unsigned long long)r.history.version());
+}
+
+int Recover(const Args& a) {
+  std::vector<std::string> rest = a.rest;
+  bool dry_run = false;
+  for (auto it = rest.begin(); it != rest.end();) {
+    if (*it != "--dry-run") {
+      ++it;
+      continue;
+    }
+    dry_run = true;
+    it = rest.erase(it);
+  }
+  if (!rest.empty()) return Usage("recover takes --dry-run only");
+  auto map = core::LoadMapServerMap(a.map);
+  if (!map.ok()) return Fail(map.status());
+  auto recovery = mapctl::ReadRecoverableHistory(a.state_dir);
+  if (!recovery.ok()) return Fail(recovery.status());
+  if (!recovery->damaged()) {
+    std::printf("recover: nothing damaged: the aggregator opens %s as it is (version %llu)\n",
+                a.state_dir.c_str(), (unsigned long long)recovery->history.version());
+    return 0;
+  }
+  PrintRecovery(*recovery);
+  auto store = mapctl::RebuildStore(map->grid, recovery->history, recovery->history.version());
+  if (!store.ok()) return Fail(store.status());
+  if (dry_run) {
+    std::printf("recover: --dry-run: nothing written\n");
+    return 0;
+  }
+  const uint64_t version = recovery->history.version();
+  const auto backup = mapctl::ReplaceState(a.state_dir, *store, BackupName("recover", version));
+  if (!backup.ok()) return Fail(backup.status());
+  std::printf("recover: state at version %llu; the damaged files are in %s\n",
+              (unsigned long long)version, backup->c_str());
+  return 0;
+}
+
 // Splits the common flags from the command and its arguments.
 core::Result<Args> ParseArgs(int argc, char** argv) {
   Args a;
@@ -315,11 +387,10 @@ int Run(const Args& a) {
     int (*run)(const Args&);
     bool writes;
   };
-  static const Command kCommands[] = {{"export", kExportHelp, Export, false},
-                                      {"history", kHistoryHelp, History, false},
-                                      {"rollback", kRollbackHelp, Rollback, true},
-                                      {"reset-region", kResetHelp, ResetRegion, true},
-                                      {"promote", kPromoteHelp, Promote, true}};
+  static const Command kCommands[] = {
+      {"export", kExportHelp, Export, false},      {"history", kHistoryHelp, History, false},
+      {"rollback", kRollbackHelp, Rollback, true}, {"reset-region", kResetHelp, ResetRegion, true},
+      {"promote", kPromoteHelp, Promote, true},    {"recover", kRecoverHelp, Recover, true}};
   for (const Command& c : kCommands) {
     if (a.command != c.name) continue;
     if (HasHelp(a.rest)) return std::printf("%s", c.help), 0;

@@ -120,6 +120,49 @@ TEST_F(JournalTest, ABitFlippedInTheLastCommittedRecordIsDamage) {
   ExpectDamaged(bad, "commit block");
 }
 
+// For an operator's recovery: the intact records before the damage, and how many were
+// committed.
+TEST_F(JournalTest, SalvageKeepsTheIntactRecordsBeforeTheDamage) {
+  std::vector<char> bad = good_;
+  bad[two_.size() - 3] ^= 0x40;  // inside record 2
+  WriteAll(path_, bad);
+  auto s = SalvageJournal(path_, 1 << 20);
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  ASSERT_EQ(s->records.size(), 1u);
+  EXPECT_EQ(s->records[0], Payload(0));
+  EXPECT_EQ(s->committed_records, 3);
+  EXPECT_NE(s->damage.find("record 2 at byte"), std::string::npos) << s->damage;
+  EXPECT_EQ(ReadAll(path_), bad);  // read only
+
+  WriteAll(path_, std::vector<char>(good_.begin(), good_.end() - 5));
+  s = SalvageJournal(path_, 1 << 20);
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s->records.size(), 2u);
+  EXPECT_NE(s->damage.find("record 3"), std::string::npos) << s->damage;
+
+  bad = good_;
+  bad[9] ^= 0x01;  // the commit block: the records are read on, their number is unknown
+  WriteAll(path_, bad);
+  s = SalvageJournal(path_, 1 << 20);
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s->records.size(), 3u);
+  EXPECT_EQ(s->committed_records, -1);
+  EXPECT_NE(s->damage.find("commit block"), std::string::npos) << s->damage;
+
+  WriteAll(path_, CrashedWhileAppending(two_, good_, 0));  // a record never committed
+  s = SalvageJournal(path_, 1 << 20);
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s->records.size(), 2u);
+  EXPECT_EQ(s->committed_records, 2);
+  EXPECT_TRUE(s->damage.empty()) << s->damage;
+
+  WriteAll(path_, std::vector<char>(40, 'x'));
+  s = SalvageJournal(path_, 1 << 20);
+  ASSERT_TRUE(s.ok());
+  EXPECT_TRUE(s->records.empty());
+  EXPECT_EQ(s->damage, "no journal header");
+}
+
 TEST_F(JournalTest, AFormatOneJournalIsReadAndRewrittenAsFormatTwo) {
   // Format 1: the same records after "FMJ1" and version 1, without a commit block.
   std::vector<char> v1 = good_;

@@ -14,7 +14,7 @@ using aggregator::MapPersistence;
 core::Status ReadSnapshotPart(const std::string& path, int64_t max_bytes, StateHistory& h) {
   auto snapshot = aggregator::ReadSnapshot(path, max_bytes);
   if (snapshot.status().code() == core::StatusCode::kNotFound) return core::OkStatus();
-  if (!snapshot.ok()) return snapshot.status().WithContext(path);
+  if (!snapshot.ok()) return snapshot.status();  // it names the file
   h.snapshot_found = true;
   h.snapshot_version = snapshot->version;
   h.static_fingerprint = snapshot->static_fingerprint;
@@ -29,7 +29,7 @@ core::Status ReadSnapshotPart(const std::string& path, int64_t max_bytes, StateH
 core::Status ReadJournalPart(const std::string& path, int64_t max_bytes, StateHistory& h) {
   auto journal = aggregator::ReadJournal(path, max_bytes);
   if (journal.status().code() == core::StatusCode::kNotFound) return core::OkStatus();
-  if (!journal.ok()) return journal.status().WithContext(path);
+  if (!journal.ok()) return journal.status();  // it names the file
   h.torn_tail = journal->torn_tail;
   h.torn_detail = journal->torn_detail;
   for (size_t i = 0; i < journal->records.size(); ++i) {
@@ -51,17 +51,23 @@ core::Status ReadJournalPart(const std::string& path, int64_t max_bytes, StateHi
 
 }  // namespace
 
-core::Result<StateHistory> ReadStateHistory(const std::string& folder, int64_t max_file_bytes) {
-  const std::string snapshot = folder + "/" + MapPersistence::kSnapshotName;
-  const std::string journal = folder + "/" + MapPersistence::kJournalName;
+core::Result<StateFiles> FindStateFiles(const std::string& folder) {
+  StateFiles files{folder + "/" + MapPersistence::kSnapshotName,
+                   folder + "/" + MapPersistence::kJournalName};
   std::error_code ec;
-  if (!std::filesystem::exists(snapshot, ec) && !std::filesystem::exists(journal, ec)) {
+  if (!std::filesystem::exists(files.snapshot, ec) && !std::filesystem::exists(files.journal, ec)) {
     return core::NotFound(folder + ": no " + MapPersistence::kSnapshotName + " and no " +
                           MapPersistence::kJournalName + " (not an aggregator state folder?)");
   }
+  return files;
+}
+
+core::Result<StateHistory> ReadStateHistory(const std::string& folder, int64_t max_file_bytes) {
+  StateFiles files;
+  FLEETMAP_ASSIGN_OR_RETURN(files, FindStateFiles(folder));
   StateHistory h;
-  FLEETMAP_RETURN_IF_ERROR(ReadSnapshotPart(snapshot, max_file_bytes, h));
-  FLEETMAP_RETURN_IF_ERROR(ReadJournalPart(journal, max_file_bytes, h));
+  FLEETMAP_RETURN_IF_ERROR(ReadSnapshotPart(files.snapshot, max_file_bytes, h));
+  FLEETMAP_RETURN_IF_ERROR(ReadJournalPart(files.journal, max_file_bytes, h));
   return h;
 }
 

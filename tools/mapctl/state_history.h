@@ -24,6 +24,12 @@ struct StateHistory {
   uint64_t version() const { return commits.empty() ? 0 : commits.back().version; }
 };
 
+// The paths of a state folder's snapshot and journal; NotFound when it holds neither.
+struct StateFiles {
+  std::string snapshot, journal;
+};
+core::Result<StateFiles> FindStateFiles(const std::string& folder);
+
 // NotFound when the folder holds neither snapshot nor journal; DataLoss (naming the file and
 // the record) for a corrupt snapshot or journal or a gap in the versions.
 core::Result<StateHistory> ReadStateHistory(const std::string& folder,
