@@ -41,6 +41,11 @@ constexpr int kMaxHeldCellsPerMessage = 100;
 // Both: every process's heartbeat, STATUS_<process>: STATUS_agent_<id>, STATUS_aggregator.
 constexpr char kStatusPrefix[] = "STATUS_";
 constexpr char kAgentStatusPrefix[] = "STATUS_agent_";
+// Counters of STATUS_aggregator that ask the vehicles for something: after an operator's
+// `fleetmap-mapctl recover`, the recovery's id and the version it kept; each vehicle sends
+// the merged maps it holds from later versions again, once per id (docs/operations.md).
+constexpr char kRecoveryIdCounter[] = "recovery_id";
+constexpr char kRecoveredVersionCounter[] = "recovered_version";
 
 inline std::string ScanChannel(const std::string& vehicle) { return kScanPrefix + vehicle; }
 inline std::string OdomChannel(const std::string& vehicle) { return kOdomPrefix + vehicle; }

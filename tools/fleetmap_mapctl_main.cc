@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "aggregator/recovery_marker.h"
 #include "aggregator/state_dir_lock.h"
 #include "core/codecs/map_render.h"
 #include "core/map_io.h"
@@ -94,7 +95,9 @@ snapshot). Keeps what can still be read: the snapshot's merges, then the journal
 records in order up to the first one that is not. Writes that as the new state and moves the
 damaged files to DIR/backup/recover-vN-TIME/ (nothing is deleted). Prints the version
 recovered and how many acknowledged merges after it are gone (the journal's commit block
-says how many it held). --dry-run: only print. A folder with nothing damaged is left as it is.
+says how many it held), and leaves DIR/recovery: the aggregator, started again, asks the
+vehicles for the merged maps they keep (outbox.retain_merged_s) from later versions, and
+merges them again. --dry-run: only print. A folder with nothing damaged is left as it is.
 Exit status: 0 recovered (or nothing to recover), 1 unreadable folder or a write failed.
 )";
 
@@ -365,6 +368,14 @@ int Recover(const Args& a) {
   if (!backup.ok()) return Fail(backup.status());
   std::printf("recover: state at version %llu; the damaged files are in %s\n",
               (unsigned long long)version, backup->c_str());
+  const double now_s = NowS();
+  const aggregator::RecoveryMarker marker{static_cast<int64_t>(now_s * 1e6), version, now_s};
+  const core::Status marked = aggregator::WriteRecoveryMarker(a.state_dir, marker);
+  if (!marked.ok()) return Fail(marked);
+  std::printf(
+      "recover: once started, the aggregator asks the vehicles for the merged maps they hold "
+      "from versions after %llu (node.recovery_request_s)\n",
+      (unsigned long long)version);
   return 0;
 }
 

@@ -11,26 +11,36 @@ namespace fs = std::filesystem;
 
 core::Status OutboxOptions::Validate() const {
   if (!(first_resend_s > 0 && max_resend_s >= first_resend_s && max_pending_maps >= 1 &&
-        tile_size_cells >= 4)) {
+        tile_size_cells >= 4 && retain_merged_s >= 0 && max_retained_bytes >= 0)) {
     return core::InvalidArgument(
         "outbox: first_resend_s > 0, max_resend_s >= first_resend_s, "
-        "max_pending_maps >= 1, tile_size_cells >= 4");
+        "max_pending_maps >= 1, tile_size_cells >= 4, retain_merged_s >= 0, "
+        "max_retained_bytes >= 0");
   }
   return core::OkStatus();
 }
 
-TempMapOutbox::TempMapOutbox(const OutboxOptions& options) : options_(options) {}
+TempMapOutbox::TempMapOutbox(const OutboxOptions& options)
+    : options_(options),
+      retained_({options.state_dir.empty() ? "" : options.state_dir + "/retained",
+                 options.retain_merged_s, options.max_retained_bytes}) {}
 
 std::string TempMapOutbox::PathOf(int32_t sequence) const {
   return options_.state_dir + "/tempmap_" + std::to_string(sequence) + ".fmtm";
 }
 
 void TempMapOutbox::Insert(const core::TempMap& map, double now_s) {
+  InsertTiles(map.sequence,
+              core::SplitTempMap(map, core::TempMapTileOptions(options_.tile_size_cells)), now_s);
+}
+
+void TempMapOutbox::InsertTiles(int32_t sequence, std::vector<core::TempMapTile> tiles,
+                                double now_s) {
   Entry e;
-  e.tiles = core::SplitTempMap(map, core::TempMapTileOptions(options_.tile_size_cells));
+  e.tiles = std::move(tiles);
   e.next_send_s = now_s;
   e.backoff_s = options_.first_resend_s;
-  pending_[map.sequence] = std::move(e);
+  pending_[sequence] = std::move(e);
   while (static_cast<int>(pending_.size()) > options_.max_pending_maps) {
     const int32_t oldest = pending_.begin()->first;
     if (!options_.state_dir.empty()) fs::remove(PathOf(oldest));
@@ -55,6 +65,7 @@ int TempMapOutbox::LoadPersisted(double now_s) {
     Insert(*map, now_s);
     ++loaded;
   }
+  retained_.Load();
   return loaded;
 }
 
@@ -73,6 +84,7 @@ core::Status TempMapOutbox::Add(const core::TempMap& map, double now_s) {
     // A full disk must not stop the map from being sent: it is only not kept across restarts.
     if (!saved.ok()) ++counters_.persist_errors;
   }
+  retained_.DropEndedBefore(map.end_s);
   Insert(map, now_s);
   return core::OkStatus();
 }
@@ -95,11 +107,17 @@ std::vector<core::TempMapTile> TempMapOutbox::Due(double now_s) {
 }
 
 void TempMapOutbox::OnAck(int32_t sequence, const std::vector<int32_t>& received,
-                          AckOutcome outcome) {
+                          AckOutcome outcome, int32_t map_version) {
   auto it = pending_.find(sequence);
   if (it == pending_.end()) return;
   if (outcome != AckOutcome::kPending) {
-    if (!options_.state_dir.empty()) fs::remove(PathOf(sequence));
+    const std::string file = options_.state_dir.empty() ? "" : PathOf(sequence);
+    const bool merged = outcome == AckOutcome::kMerged || outcome == AckOutcome::kDuplicate;
+    if (merged && map_version >= 1) {
+      retained_.Keep(sequence, map_version, std::move(it->second.tiles), file);
+    } else if (!file.empty()) {
+      fs::remove(file);
+    }
     pending_.erase(it);
     ++counters_.maps_done;
     return;
@@ -114,6 +132,28 @@ void TempMapOutbox::OnAck(int32_t sequence, const std::vector<int32_t>& received
     e.backoff_s = options_.first_resend_s;
     e.next_send_s = std::min(e.next_send_s, e.last_send_s + options_.first_resend_s);
   }
+}
+
+int TempMapOutbox::ResendMergedAfter(int64_t version, double now_s) {
+  int resent = 0;
+  for (RetainedMap& m : retained_.TakeMergedAfter(version)) {
+    if (m.path.empty()) {
+      InsertTiles(m.sequence, std::move(m.tiles), now_s);
+    } else {
+      auto map = core::LoadTempMap(m.path);
+      std::error_code ec;
+      if (!map.ok()) {
+        ++counters_.persist_errors;
+        fs::rename(m.path, m.path + ".corrupt", ec);
+        continue;
+      }
+      fs::rename(m.path, PathOf(m.sequence), ec);  // pending again, also across a restart
+      Insert(*map, now_s);
+    }
+    ++resent;
+  }
+  counters_.maps_resent_after_recovery += resent;
+  return resent;
 }
 
 }  // namespace fleetmap::vehicle_agent

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/temp_map_tiles.h"
+#include "vehicle_agent/retained_maps.h"
 
 namespace fleetmap::vehicle_agent {
 
@@ -22,6 +23,10 @@ struct OutboxOptions {
   double max_resend_s = 16.0;   // backoff doubles up to this while no new tile is confirmed
   int max_pending_maps = 64;    // the oldest is dropped (and counted) beyond this
   int tile_size_cells = 64;
+  // Merged maps are kept this long after their end, to be sent again if the aggregator loses
+  // them (retained_maps.h), up to this many bytes; 0 bytes: none are kept.
+  double retain_merged_s = 86400.0;
+  int64_t max_retained_bytes = int64_t{64} << 20;
   core::Status Validate() const;
 };
 
@@ -31,6 +36,7 @@ struct OutboxCounters {
   int64_t maps_added = 0, maps_done = 0, maps_dropped = 0;
   int64_t tiles_sent = 0, tiles_resent = 0;
   int64_t persist_errors = 0;
+  int64_t maps_resent_after_recovery = 0;  // merged maps sent again: the aggregator lost them
 };
 
 class TempMapOutbox {
@@ -44,10 +50,16 @@ class TempMapOutbox {
   // Tiles to send now: all tiles of new maps, and the unconfirmed tiles of maps whose resend
   // time has come.
   std::vector<core::TempMapTile> Due(double now_s);
-  // An acknowledgement: received tile indices, and whether the map is finished with.
-  void OnAck(int32_t sequence, const std::vector<int32_t>& received, AckOutcome outcome);
+  // An acknowledgement: received tile indices, and whether the map is finished with. A map
+  // merged (or a duplicate of one merged) into `map_version` is retained.
+  void OnAck(int32_t sequence, const std::vector<int32_t>& received, AckOutcome outcome,
+             int32_t map_version = -1);
+  // The aggregator recovered its map at `version` and lost what came after: the retained
+  // maps merged into later versions are pending again, sent now. Returns how many.
+  int ResendMergedAfter(int64_t version, double now_s);
 
   size_t pending() const { return pending_.size(); }
+  const RetainedMaps& retained() const { return retained_; }
   const OutboxCounters& counters() const { return counters_; }
 
  private:
@@ -61,9 +73,11 @@ class TempMapOutbox {
   };
   std::string PathOf(int32_t sequence) const;
   void Insert(const core::TempMap& map, double now_s);
+  void InsertTiles(int32_t sequence, std::vector<core::TempMapTile> tiles, double now_s);
 
   OutboxOptions options_;
   std::map<int32_t, Entry> pending_;  // by sequence: oldest first
+  RetainedMaps retained_;
   OutboxCounters counters_;
 };
 

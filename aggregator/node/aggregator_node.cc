@@ -621,6 +621,10 @@ void AggregatorNode::SendStatus(double now_s) {
   s.counters.emplace_back("incomplete_maps", static_cast<int64_t>(incoming_.size()));
   s.counters.emplace_back("throttled_vehicles", limits_.throttled_vehicles());
   for (const auto& named : auth::Named(verifier_.counters())) s.counters.push_back(named);
+  if (options_.recovery.id != 0 && now_s < options_.recovery.until_s) {
+    s.counters.emplace_back(lcmtypes::kRecoveryIdCounter, options_.recovery.id);
+    s.counters.emplace_back(lcmtypes::kRecoveredVersionCounter, options_.recovery.version);
+  }
   Send(Link::kDownlink, lcmtypes::StatusChannel(options_.process_name),
        StatusMessage(s, lcmtypes::ToUtime(now_s)));
 }

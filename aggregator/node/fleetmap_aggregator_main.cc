@@ -14,6 +14,7 @@
 #include "aggregator/node/lcm_links.h"
 #include "aggregator/node/log_replay.h"
 #include "aggregator/node/node_config.h"
+#include "aggregator/recovery_marker.h"
 #include "auth/key.h"
 #include "core/codecs/map_render.h"
 #include "core/map_io.h"
@@ -128,6 +129,14 @@ core::Result<AggregatorProcessConfig> Configure(const Args& args) {
   // acknowledgement.
   if (!config.state_dir.empty() && args.replay.empty())
     config.node.spool_dir = config.state_dir + "/incoming";
+  if (!config.state_dir.empty() && args.replay.empty()) {
+    std::optional<aggregator::RecoveryMarker> recovery;
+    FLEETMAP_ASSIGN_OR_RETURN(recovery, aggregator::ReadRecoveryMarker(config.state_dir));
+    if (recovery) {
+      config.node.recovery = {recovery->id, static_cast<int64_t>(recovery->version),
+                              recovery->at_s + config.node.recovery_request_s};
+    }
+  }
   FLEETMAP_RETURN_IF_ERROR(config.Validate());
   return config;
 }
@@ -229,6 +238,14 @@ int RunLive(const Args& args, const AggregatorProcessConfig& config) {
     return 1;
   }
   (*links)->Bind(node->get());
+  const AggregatorNodeOptions::Recovery& recovery = config.node.recovery;
+  if (recovery.id != 0 && start_s < recovery.until_s) {
+    std::fprintf(stderr,
+                 "fleetmap-aggregator: this state folder was recovered at version %lld: asking "
+                 "the vehicles for the merged maps they hold from later versions (for %.0f s "
+                 "more)\n",
+                 (long long)recovery.version, recovery.until_s - start_s);
+  }
   if (!args.quiet) {
     std::fprintf(stderr, "fleetmap-aggregator: version %llu, listening on %s, answering on %s\n",
                  (unsigned long long)(*node)->aggregator().store().version(),

@@ -42,7 +42,7 @@ core::Status ReadNode(const YamlReader& r, const YAML::Node& n, AggregatorNodeOp
       r, n, "node",
       {"pending_ack_interval_s", "keyframe_min_interval_s", "keyframe_period_s", "status_period_s",
        "pending_map_timeout_s", "max_message_bytes", "max_report_matches",
-       "max_remembered_rejections", "max_retry_maps", "max_held_maps"}));
+       "max_remembered_rejections", "max_retry_maps", "max_held_maps", "recovery_request_s"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "pending_ack_interval_s", o.pending_ack_interval_s));
   FLEETMAP_RETURN_IF_ERROR(
@@ -55,6 +55,7 @@ core::Status ReadNode(const YamlReader& r, const YAML::Node& n, AggregatorNodeOp
   FLEETMAP_RETURN_IF_ERROR(
       Read(r, n, "node", "max_remembered_rejections", o.max_remembered_rejections));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "max_retry_maps", o.max_retry_maps));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "recovery_request_s", o.recovery_request_s));
   return Read(r, n, "node", "max_held_maps", o.max_held_maps);
 }
 

@@ -17,6 +17,8 @@ core::Status AggregatorNodeOptions::Validate() const {
   if (!(std::isfinite(keyframe_period_s) && keyframe_period_s >= 0.0))
     return core::InvalidArgument("node.keyframe_period_s must be >= 0");
   if (!Positive(status_period_s)) return core::InvalidArgument("node.status_period_s must be > 0");
+  if (!(std::isfinite(recovery_request_s) && recovery_request_s >= 0.0))
+    return core::InvalidArgument("node.recovery_request_s must be >= 0");
   if (!Positive(pending_map_timeout_s))
     return core::InvalidArgument("node.pending_map_timeout_s must be > 0");
   if (max_message_bytes < 1024)

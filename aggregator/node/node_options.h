@@ -49,6 +49,17 @@ struct AggregatorNodeOptions {
   // aggregator still has them: the vehicle never resends a tile it saw acknowledged. Empty:
   // memory only. The process uses <state-dir>/incoming.
   std::string spool_dir;
+  // After `fleetmap-mapctl recover` (aggregator/recovery_marker.h): STATUS names the
+  // recovery (recovery_id, recovered_version) until `until_s`, and the vehicles send again
+  // the merged maps they hold from later versions. id 0: none.
+  struct Recovery {
+    int64_t id = 0;
+    int64_t version = -1;
+    double until_s = 0.0;  // the node's clock
+  } recovery;
+  // How long after a recovery STATUS asks for the lost maps, seconds (the vehicles keep
+  // merged maps for outbox.retain_merged_s, a day by default).
+  double recovery_request_s = 86400.0;
   std::string process_name = "aggregator";   // STATUS_<process_name>
   std::string software_version = "unknown";  // in STATUS
   core::Status Validate() const;

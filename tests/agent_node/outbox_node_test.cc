@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/temp_map_file.h"
+#include "fleetmap/status_t.hpp"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "tests/agent_node/node_test_util.h"
 #include "tests/agent_node/temp_dir.h"
@@ -98,6 +99,45 @@ TEST_F(OutboxNodeTest, PendingAckResendsOnlyTheMissingTilesAfterTheBackoff) {
   SendAck(*node, other, 140.0);
   EXPECT_EQ(testing::Counter(*node, "maps_merged"), 1);
   EXPECT_EQ(testing::Counter(*node, "acks"), 3);
+}
+
+// Merged maps are kept (on disk, in retained/). An aggregator that recovered its state at
+// version 3 names the recovery in its heartbeat: the map merged into version 4 is sent again,
+// whole and once; the one in version 3 is not.
+TEST_F(OutboxNodeTest, MergedMapsAreSentAgainOnceWhenTheAggregatorRecovered) {
+  auto node = NodeWithPendingMap({4, 5});
+  node->Tick(100.0);
+  SendAck(*node, MakeAck(4, fleetmap::tempmap_ack_t::MERGED, {}), 100.2);
+  auto merged_later = MakeAck(5, fleetmap::tempmap_ack_t::MERGED, {});
+  merged_later.map_version = 4;
+  SendAck(*node, merged_later, 100.2);
+  node->Tick(100.3);
+  EXPECT_EQ(testing::Counter(*node, "tempmaps_pending"), 0);
+  EXPECT_EQ(testing::Counter(*node, "tempmaps_retained"), 2);
+  EXPECT_GT(testing::Counter(*node, "retained_bytes"), 0);
+
+  fleetmap::status_t heartbeat;
+  heartbeat.process = "aggregator";
+  heartbeat.map_version = 3;
+  heartbeat.counter_names = {lcmtypes::kRecoveryIdCounter, lcmtypes::kRecoveredVersionCounter};
+  heartbeat.counter_values = {77, 3};
+  heartbeat.num_counters = 2;
+  size_t mark = out_.sent.size();
+  testing::FeedMessage(*node, Link::kDownlink, "STATUS_aggregator", heartbeat, 101.0);
+  node->Tick(101.0);
+  const auto resent = out_.Decoded<fleetmap::tempmap_tile_t>("TEMPMAP_v1", mark);
+  ASSERT_EQ(resent.size(), 12u);
+  for (const auto& t : resent) EXPECT_EQ(t.tempmap_seq, 5);
+  EXPECT_EQ(testing::Counter(*node, "tempmaps_resent_after_recovery"), 1);
+  merged_later.map_version = 5;  // merged again, into the recovered history
+  SendAck(*node, merged_later, 101.5);
+  mark = out_.sent.size();
+  for (double t = 102.0; t < 110.0; t += 0.5) {  // the same recovery, heard again
+    testing::FeedMessage(*node, Link::kDownlink, "STATUS_aggregator", heartbeat, t);
+    node->Tick(t);
+  }
+  EXPECT_EQ(out_.Count("TEMPMAP_v1", mark), 0u);
+  EXPECT_EQ(testing::Counter(*node, "tempmaps_retained"), 2);
 }
 
 TEST_F(OutboxNodeTest, UnacknowledgedTilesAreResentWithGrowingBackoff) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <set>
 
@@ -441,6 +442,88 @@ TEST(AggregatorNodeTest, AfterAFullDiskTheBacklogMergesInArrivalOrderAsWithoutTh
     return line.substr(0, line.find(" merged"));
   };
   EXPECT_EQ(map_part(node->FinalLine()), map_part(reference->FinalLine()));
+}
+
+// Two vehicles' four maps merged, then the state folder lost (the worst damage: recovered
+// at version 0). The restarted aggregator names the recovery in its STATUS; the vehicles send
+// again what they kept, in the order they first sent it: every acknowledged merge is back,
+// and the map is the one before the loss.
+TEST(AggregatorNodeTest, AfterARecoveryTheVehiclesKeptMapsBringBackEveryAcknowledgedMerge) {
+  aggregator::testing::ScratchFolder folder;
+  std::map<std::string, vehicle_agent::TempMapOutbox> vehicles;
+  vehicles.emplace("v1", vehicle_agent::OutboxOptions{});
+  vehicles.emplace("v2", vehicle_agent::OutboxOptions{});
+  std::vector<std::pair<std::string, int32_t>> sent_order;
+  // Sends what each vehicle has due, in `sent_order`, and hands the acknowledgements back.
+  const auto exchange = [&](AggregatorNode& node, RecordingPublisher& out, double now_s) {
+    const size_t acks_before = out.Count(lcmtypes::kTempMapAckChannel);
+    std::map<std::pair<std::string, int32_t>, std::vector<std::vector<uint8_t>>> due;
+    for (auto& [id, outbox] : vehicles) {
+      for (const core::TempMapTile& t : outbox.Due(now_s)) {
+        const int64_t utime = kUtime + int64_t{20'000'000} * t.sequence + (now_s > 50 ? 1 : 0);
+        due[{id, t.sequence}].push_back(Encode(lcmtypes::ToMessage(t, utime)));
+      }
+    }
+    for (const auto& key : sent_order)
+      if (due.count(key)) Feed(node, key.first, due[key], now_s);
+    const auto acks = out.Decoded<fleetmap::tempmap_ack_t>(lcmtypes::kTempMapAckChannel);
+    for (size_t i = acks_before; i < acks.size(); ++i) {
+      const fleetmap::tempmap_ack_t& a = acks[i];
+      vehicles.at(a.vehicle_id)
+          .OnAck(a.tempmap_seq, Received(a), static_cast<vehicle_agent::AckOutcome>(a.outcome),
+                 a.map_version);
+    }
+  };
+  uint64_t hash = 0;
+  {
+    RecordingPublisher out;
+    auto node = MakeNode(&out, {}, folder.path());
+    for (int i = 0; i < 4; ++i) {
+      core::TempMap m = PalletMaps()[i];
+      m.vehicle_id = i % 2 ? "v2" : "v1";
+      sent_order.emplace_back(m.vehicle_id, m.sequence);
+      ASSERT_TRUE(vehicles.at(m.vehicle_id).Add(m, 1.0 + i).ok());
+      exchange(*node, out, 1.0 + i);
+    }
+    ASSERT_EQ(node->counters().maps_merged, 4);
+    hash = MapHash(node->aggregator().store().current_map());
+  }
+  for (auto& [id, outbox] : vehicles) {
+    EXPECT_EQ(outbox.pending(), 0u) << id;
+    EXPECT_EQ(outbox.retained().size(), 2u) << id;
+  }
+  std::filesystem::remove(folder.File(aggregator::MapPersistence::kSnapshotName));
+  std::filesystem::remove(folder.File(aggregator::MapPersistence::kJournalName));
+
+  RecordingPublisher out;
+  AggregatorNodeOptions options;
+  options.recovery = {42, 0, 1000.0};
+  auto node = MakeNode(&out, {}, folder.path(), options, 100.0);
+  ASSERT_EQ(node->aggregator().store().version(), 0u);
+  node->Tick(100.0);
+  const auto status = out.Decoded<fleetmap::status_t>("STATUS_aggregator");
+  ASSERT_FALSE(status.empty());
+  const auto counter = [&](const std::string& name) {
+    const auto& s = status.back();
+    for (size_t i = 0; i < s.counter_names.size(); ++i)
+      if (s.counter_names[i] == name) return s.counter_values[i];
+    return int64_t{-1};
+  };
+  EXPECT_EQ(counter(lcmtypes::kRecoveryIdCounter), 42);
+  EXPECT_EQ(counter(lcmtypes::kRecoveredVersionCounter), 0);
+  for (auto& [id, outbox] : vehicles) EXPECT_EQ(outbox.ResendMergedAfter(0, 100.0), 2) << id;
+  exchange(*node, out, 100.0);
+  EXPECT_EQ(node->counters().maps_merged, 4);
+  EXPECT_EQ(node->aggregator().store().version(), 4u);
+  EXPECT_EQ(MapHash(node->aggregator().store().current_map()), hash);
+  for (auto& [id, outbox] : vehicles) EXPECT_EQ(outbox.pending(), 0u) << id;
+
+  // After the request's window, STATUS no longer names it.
+  node->Tick(1000.5);
+  const auto later = out.Decoded<fleetmap::status_t>("STATUS_aggregator").back();
+  EXPECT_EQ(std::count(later.counter_names.begin(), later.counter_names.end(),
+                       lcmtypes::kRecoveryIdCounter),
+            0);
 }
 
 TEST(AggregatorNodeTest, StatusEverySecondAndAKeyframeEveryPeriod) {

@@ -180,6 +180,10 @@ out=$("$bin/fleetmap-aggregator" --map "$map" --state-dir "$work/corrupt" --repl
 out=$("$bin/fleetmap-mapctl" --state-dir "$work/corrupt" --map "$map" recover 2>&1)
 [[ $? == 0 && $out == *"snapshot: damaged"* && $out == *"recovered: version 0"* ]] || fail "mapctl recover: $out"
 ls "$work"/corrupt/backup/recover-*/snapshot.fms >/dev/null 2>&1 || fail "recover kept no backup"
+[[ -s $work/corrupt/recovery ]] || fail "recover left no recovery marker"
+out=$("$bin/fleetmap-aggregator" --map "$map" --state-dir "$work/corrupt" --uplink-url "$uplink" \
+  --downlink-url "$downlink" --duration 1 --quiet 2>&1)
+[[ $out == *"was recovered at version 0: asking the vehicles"* ]] || fail "the aggregator after recover: $out"
 resent=$("$bin/fleetmap-aggregator" --map "$map" --state-dir "$work/corrupt" --replay "$work/uplink.lcmlog" --quiet)
 [[ ${resent%% merged*} == "${live%% merged*}" ]] || fail "after recover, the maps sent again: '$resent' vs '$live'"
 out=$("$bin/fleetmap-mapctl" --state-dir "$work/corrupt" --map "$map" recover 2>&1)

@@ -248,12 +248,15 @@ core::Status ReadCandidateWatch(const YamlReader& r, const YAML::Node& n, AgentP
 
 core::Status ReadOutbox(const YamlReader& r, const YAML::Node& n, OutboxOptions& o) {
   if (!n) return core::OkStatus();
-  FLEETMAP_RETURN_IF_ERROR(CheckKeys(
-      r, n, "outbox", {"first_resend_s", "max_resend_s", "max_pending_maps", "tile_size_cells"}));
+  FLEETMAP_RETURN_IF_ERROR(CheckKeys(r, n, "outbox",
+                                     {"first_resend_s", "max_resend_s", "max_pending_maps",
+                                      "tile_size_cells", "retain_merged_s", "max_retained_bytes"}));
   READ_NUMBER(n, "first_resend_s", "outbox.", o.first_resend_s);
   READ_NUMBER(n, "max_resend_s", "outbox.", o.max_resend_s);
   READ_AS(int, n, "max_pending_maps", "outbox.", o.max_pending_maps);
   READ_AS(int, n, "tile_size_cells", "outbox.", o.tile_size_cells);
+  READ_NUMBER(n, "retain_merged_s", "outbox.", o.retain_merged_s);
+  READ_AS(int64_t, n, "max_retained_bytes", "outbox.", o.max_retained_bytes);
   return core::OkStatus();
 }
 

@@ -225,7 +225,7 @@ void AgentNode::OnAck(const void* data, int size) {
   ++counters_.acks;
   const auto outcome = static_cast<AckOutcome>(m->outcome);
   const size_t pending_before = outbox_.pending();
-  outbox_.OnAck(m->tempmap_seq, received, outcome);
+  outbox_.OnAck(m->tempmap_seq, received, outcome, m->map_version);
   const bool finished = outbox_.pending() < pending_before;
   // Tiles still waiting for the pacer that the aggregator has, or no longer needs, stay here.
   const std::set<int32_t> have(received.begin(), received.end());
@@ -277,7 +277,22 @@ void AgentNode::OnKeyframe(const void* data, int size) {
 
 void AgentNode::OnAggregatorStatus(const void* data, int size, double now_s) {
   auto m = Decode<fleetmap::status_t>(kAggregatorStatus, data, size);
-  if (m && m->map_version >= 0) follower_.OnRemoteVersion(m->map_version, now_s);
+  if (!m) return;
+  if (m->map_version >= 0) follower_.OnRemoteVersion(m->map_version, now_s);
+  // An aggregator that recovered its state folder names the recovery and the version it
+  // kept: the merged maps this vehicle still holds from after it are sent again, once.
+  int64_t recovery_id = 0, recovered_version = -1;
+  const size_t n = std::min(m->counter_names.size(), m->counter_values.size());
+  for (size_t i = 0; i < n; ++i) {
+    if (m->counter_names[i] == lcmtypes::kRecoveryIdCounter) recovery_id = m->counter_values[i];
+    if (m->counter_names[i] == lcmtypes::kRecoveredVersionCounter)
+      recovered_version = m->counter_values[i];
+  }
+  if (recovery_id == 0 || recovered_version < 0 || recovery_id == answered_recovery_) return;
+  answered_recovery_ = recovery_id;
+  const int resent = outbox_.ResendMergedAfter(recovered_version, now_s);
+  log_.Info("the aggregator recovered its map at version " + std::to_string(recovered_version) +
+            ": " + std::to_string(resent) + " merged temporary map(s) held here sent again");
 }
 
 void AgentNode::OnCandidates(const void* data, int size) {
@@ -512,6 +527,8 @@ NamedCounters AgentNode::AllCounters() const {
   NamedCounters out = CollectCounters(counters_, queue_, outbox_.counters(), follower_.counters(),
                                       pipeline_.localizer().counters());
   out.emplace_back("tempmaps_pending", static_cast<int64_t>(outbox_.pending()));
+  out.emplace_back("tempmaps_retained", static_cast<int64_t>(outbox_.retained().size()));
+  out.emplace_back("retained_bytes", outbox_.retained().bytes());
   out.emplace_back("tiles_queued", static_cast<int64_t>(sends_.size()));
   out.insert(out.end(), input_counters_.begin(), input_counters_.end());
   out.insert(out.end(), process_counters_.begin(), process_counters_.end());

@@ -110,6 +110,7 @@ class AgentNode {
   const AgentNodeOptions options_;
   Publisher* const publisher_;
   CauseLog log_;
+  int64_t answered_recovery_ = 0;  // the aggregator's last recovery this vehicle answered
   SequenceStore sequences_;
   // Numbers below this are on disk as used (reserved kSequenceBlock at a time).
   int32_t sequences_reserved_ = 1;
