@@ -15,6 +15,7 @@
 # "agents"), eval.S.paper_mode.* the same with the paper's alignment, eval.S.truthmaps.* the
 # aggregator alone fed perfect temporary maps with anchor errors up to 0.3 m / 3 deg, and
 # eval.S.truthmaps.paper_mode.* the same with the paper's alignment (docs/aggregator.md).
+# loc.global.*: global localization on the fleet scenario (fleetmap-locate-eval).
 # Per CARMEN log, real.L.*: the scan matcher and the log's odometry scored by the benchmark's
 # relations, and checks of the relations themselves (real.L.win60.ref_*, .scan_fit_*:
 # fleetmap-carmen-eval --audit, docs/localization.md).
@@ -51,7 +52,8 @@ else
   build=${FLEETMAP_EVAL_BUILD_DIR:-build-release}
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
     -DFLEETMAP_BUILD_JAR=OFF >/dev/null
-  cmake --build "$build" -j "$(nproc)" --target fleetmap-eval fleetmap-carmen-eval fleetmap-suite >&2
+  cmake --build "$build" -j "$(nproc)" --target fleetmap-eval fleetmap-carmen-eval fleetmap-suite \
+    fleetmap-locate-eval >&2
   bin=$build/bin
 fi
 ((build_only)) && { echo "run_eval: built ($bin)" >&2; exit 0; }
@@ -98,6 +100,17 @@ for s in "${scenarios[@]}"; do
   evaluate "$s" ".truthmaps" --pipeline truthmaps
   evaluate "$s" ".truthmaps.paper_mode" --pipeline truthmaps --align-mode paper
 done
+# Global localization (vehicles switched on without a pose, 20 starts along the routes):
+# loc.global.* on the fleet scenario, or on your own.
+locate=""
+if [[ -n $scenario ]]; then locate=$scenario
+elif [[ -z $carmen ]]; then locate=$worlds/fleet.yaml; fi
+if [[ -n $locate ]]; then
+  echo "run_eval: global localization on $locate" >&2
+  locate_args=(--scenario "$locate")
+  [[ -n $map ]] && locate_args+=(--map "$map")
+  figures+=$("$bin"/fleetmap-locate-eval "${locate_args[@]}")$'\n'
+fi
 for pair in "${logs[@]}"; do
   log=${pair%%:*} rel=${pair#*:}
   echo "run_eval: $log" >&2

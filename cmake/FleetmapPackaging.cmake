@@ -18,7 +18,8 @@ set(fleetmap_pkg_dir "${PROJECT_SOURCE_DIR}/packaging")
 set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
 set(fleetmap_packaged_targets fleetmap-agent fleetmap-aggregator fleetmap-mapctl fleetmap-keygen fleetmap-record fleetmap-sim
     fleetmap-eval fleetmap-maptool fleetmap-sick-emulator fleetmap-sim-candump
-    fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool fleetmap-worldgen fleetmap-suite)
+    fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool fleetmap-worldgen fleetmap-suite
+    fleetmap-locate-eval)
 add_custom_target(fleetmap_packaged)
 add_dependencies(fleetmap_packaged ${fleetmap_packaged_targets})
 if(TARGET fleetmap_lcmtypes_jar)
@@ -57,7 +58,7 @@ install(FILES "${fleetmap_pkg_dir}/etc/aggregator.yaml" "${fleetmap_pkg_dir}/etc
 # source tree (/usr/share/fleetmap/tools/...), and the programs through --bin /usr/bin.
 install(TARGETS fleetmap-sim fleetmap-eval fleetmap-maptool fleetmap-sick-emulator
                 fleetmap-sim-candump fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool
-                fleetmap-worldgen fleetmap-suite
+                fleetmap-worldgen fleetmap-suite fleetmap-locate-eval
         RUNTIME DESTINATION bin COMPONENT tools)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/tools/sim/worlds" DESTINATION share/fleetmap/tools/sim
         COMPONENT tools)
@@ -162,6 +163,7 @@ fleetmap_program_man_page(tools fleetmap-publish-samples "publish a sample of ev
 fleetmap_program_man_page(tools fleetmap-lan-tool "traffic and timing helpers of the LAN experiment")
 fleetmap_program_man_page(tools fleetmap-worldgen "generate buildings and scenarios for the world suite")
 fleetmap_program_man_page(tools fleetmap-suite "run the world suite")
+fleetmap_program_man_page(tools fleetmap-locate-eval "measure global localization against the simulation's truth")
 fleetmap_man_page(tools fleetmap-lan-experiment "bandwidth experiments on a LAN of network namespaces"
                   "${PROJECT_SOURCE_DIR}/tools/lan/fleetmap-lan-experiment" "${PROJECT_VERSION}")
 if(TARGET fleetmap_lcmtypes_jar)

@@ -70,6 +70,7 @@ core::Status Localizer::InitializeAt(const core::Pose2& pose_in_map,
                                      const Eigen::Matrix3d& covariance) {
   if (!pose_in_map.IsFinite()) return core::InvalidArgument("initial pose is not finite");
   FLEETMAP_RETURN_IF_ERROR(ValidatePoseCovariance(covariance));
+  global_pending_ = false;
   Restart(SampleAroundPose(pose_in_map, covariance, options_.kld.max_particles, rng_));
   return core::OkStatus();
 }
@@ -78,8 +79,35 @@ core::Status Localizer::InitializeGlobal() {
   if (!has_map_) return core::FailedPrecondition("global initialisation needs a map");
   ParticleSet particles = SampleFreeSpace(map_, options_.kld.max_particles, rng_);
   if (particles.empty()) return core::FailedPrecondition("the map has no free cell");
+  // Spread until the first scan tells where to look.
   Restart(std::move(particles));
+  global_pending_ = true;
   return core::OkStatus();
+}
+
+void Localizer::StartFromGlobalSearch(const core::LaserScan& scan,
+                                      const core::Pose2& scanner_in_base) {
+  global_pending_ = false;
+  ++counters_.global_searches;
+  if (!global_search_ || global_search_version_ != map_version_) {
+    global_search_ = std::make_unique<GlobalSearch>(map_, options_.global_search);
+    global_search_version_ = map_version_;
+  }
+  std::vector<Eigen::Vector2f> points;
+  ScanEndpoints(scan, scanner_in_base, static_cast<int>(scan.ranges_m.size()),
+                options_.likelihood_field.max_range_m, points);
+  const std::vector<GlobalCandidate> found = global_search_->Search(points);
+  if (found.empty()) return;  // the particles stay spread over the free space
+  const Eigen::Matrix3d around =
+      DiagonalCovariance(options_.global_sigma_xy_m, options_.global_sigma_theta_rad);
+  const int each = std::max(1, options_.kld.max_particles / static_cast<int>(found.size()));
+  ParticleSet particles;
+  for (const GlobalCandidate& c : found) {
+    ParticleSet near = SampleAroundPose(c.base_in_map, around, each, rng_);
+    particles.insert(particles.end(), near.begin(), near.end());
+  }
+  for (Particle& p : particles) p.weight = 1.0 / particles.size();
+  Restart(std::move(particles));
 }
 
 void Localizer::Restart(ParticleSet particles) {
@@ -115,6 +143,8 @@ LocalizerResult Localizer::Update(const core::OdometrySample& odom, const core::
   const bool scan_ok = AcceptScan(scan, scanner_in_base);
   ExtrapolateOdometry(scans_.last_stamp_s());
   stats.external = PassingThrough(scans_.last_stamp_s());
+  if (!stats.external && scan_ok && has_map_ && initialized_ && global_pending_)
+    StartFromGlobalSearch(scan, scanner_in_base);
   if (!stats.external && scan_ok && has_map_ && initialized_ && FilterDue())
     FilterUpdate(scan, scanner_in_base, stats);
   LocalizerResult result{Estimate(stats.external), stats};

@@ -18,6 +18,7 @@
 #include "core/occupancy_grid.h"
 #include "core/odometry.h"
 #include "core/scan.h"
+#include "vehicle_agent/global_search.h"
 #include "vehicle_agent/input_guard.h"
 #include "vehicle_agent/likelihood_field.h"
 #include "vehicle_agent/localizer_options.h"
@@ -43,6 +44,7 @@ struct LocalizerCounters {
   int64_t resamplings = 0;
   int64_t external_poses_dropped = 0;  // invalid, out of order or ignored by the mode
   int64_t external_reinits = 0;        // particles re-initialised around an external pose
+  int64_t global_searches = 0;         // scans searched for over the whole map
 };
 
 struct LocalizerStats {
@@ -73,7 +75,8 @@ class Localizer {
   core::Status SetMap(const core::OccupancyGrid& map, int32_t version);
   // Restarts the particles around a pose (an operator's or configured initial pose).
   core::Status InitializeAt(const core::Pose2& pose_in_map, const Eigen::Matrix3d& covariance);
-  // Restarts the particles over the map's free cells (max_particles of them).
+  // Global localization: the next scan is searched for over the whole map and the particles
+  // restart around the poses that fit it (or over the free cells when none does).
   core::Status InitializeGlobal();
   // A pose from the vehicle's own localization, taken to refer to the time of the last
   // Update (at most one scan period off; it is carried forward by odometry from there).
@@ -105,6 +108,8 @@ class Localizer {
   };
 
   void TrackOdometry(const core::OdometrySample& odom);
+  // The global search for `scan` and the restart around what it found.
+  void StartFromGlobalSearch(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
   bool AcceptScan(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
   bool PassingThrough(double stamp_s);
   bool FilterDue() const;
@@ -147,6 +152,9 @@ class Localizer {
   std::vector<Eigen::Vector2f> endpoints_;  // scratch
   std::vector<double> log_weights_;         // scratch
   LocalizerCounters counters_;
+  bool global_pending_ = false;                  // InitializeGlobal waits for a scan
+  std::unique_ptr<GlobalSearch> global_search_;  // of map_version_, built when first needed
+  int32_t global_search_version_ = -1;
 };
 
 }  // namespace fleetmap::vehicle_agent

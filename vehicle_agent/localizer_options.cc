@@ -43,6 +43,9 @@ core::Status LocalizerOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(CheckFinite(p.theta_rad, "initial_pose_in_map.theta_rad"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(initial_sigma_xy_m, "initial_sigma_xy_m"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(initial_sigma_theta_rad, "initial_sigma_theta_rad"));
+  FLEETMAP_RETURN_IF_ERROR(global_search.Validate());
+  FLEETMAP_RETURN_IF_ERROR(CheckPositive(global_sigma_xy_m, "global_sigma_xy_m"));
+  FLEETMAP_RETURN_IF_ERROR(CheckPositive(global_sigma_theta_rad, "global_sigma_theta_rad"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(max_odometry_step_m, "max_odometry_step_m"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(max_odometry_step_rad, "max_odometry_step_rad"));
   FLEETMAP_RETURN_IF_ERROR(CheckNonNegative(max_odometry_speed_mps, "max_odometry_speed_mps"));

@@ -7,6 +7,7 @@
 #include "core/pose2.h"
 #include "core/result.h"
 #include "vehicle_agent/beam_model.h"
+#include "vehicle_agent/global_search.h"
 #include "vehicle_agent/likelihood_field.h"
 #include "vehicle_agent/motion_model.h"
 #include "vehicle_agent/resampling.h"
@@ -64,6 +65,12 @@ struct LocalizerOptions {
   core::Pose2 initial_pose_in_map;
   double initial_sigma_xy_m = 0.5;             // > 0
   double initial_sigma_theta_rad = M_PI / 12;  // > 0
+  // kGlobal: the first scan is searched for over the whole map (global_search.h) and the
+  // particles start around the distinct poses that fit it, this far around each, m and rad
+  // (> 0 each); where nothing fits, over the whole free space.
+  GlobalSearchOptions global_search;
+  double global_sigma_xy_m = 0.1;
+  double global_sigma_theta_rad = 0.035;
   // --- bad input ---
   // One odometry increment larger than this (between two consecutive samples) is a jump (a
   // reset of the odometry frame, a glitch): it is dropped, not applied. > 0.

@@ -61,6 +61,8 @@ struct RunOptions {
   // Scans stamped in [gap_from_s, gap_to_s) never reach the localizer (an agent that stalled),
   // while every odometry sample in the gap does, through AddOdometry, as the agent feeds them.
   double gap_from_s = -1.0, gap_to_s = -1.0;
+  // The localizer sees its first scan at this time (a vehicle switched on mid-route).
+  double start_s = 0.0;
 };
 
 struct SimRun {
@@ -101,6 +103,7 @@ inline SimRun RunVehicle(const sim::World& world, RunOptions options) {
     const auto* scan = std::get_if<sim::ScanEvent>(&*event);
     if (!scan || scan->vehicle != v) continue;
     if (scan->scan.stamp_s >= options.gap_from_s && scan->scan.stamp_s < options.gap_to_s) continue;
+    if (scan->scan.stamp_s < options.start_s) continue;
     if (options.before_scan) options.before_scan(scan->scan.stamp_s, localizer);
     ScanRecord r;
     r.stamp_s = scan->scan.stamp_s;

@@ -44,6 +44,7 @@ NamedCounters CollectCounters(const AgentNodeCounters& c, const InputQueue& queu
       {"odometry_jumps", l.odometry_jumps},
       {"clock_steps_back", l.clock_steps_back},
       {"external_poses_dropped", l.external_poses_dropped},
+      {"global_searches", l.global_searches},
       {"persist_errors", o.persist_errors},
       {"tempmaps_resent_after_recovery", o.maps_resent_after_recovery},
       {"publish_failures", c.publish_failures},
