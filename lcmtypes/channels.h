@@ -3,6 +3,7 @@
 // silently.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace fleetmap::lcmtypes {
@@ -77,6 +78,24 @@ inline std::string ChannelSuffix(const std::string& channel, const char* prefix)
 // TEMPMAP_<id>, a vehicle's temporary-map tile; not the aggregator's TEMPMAP_ACK.
 inline bool IsTempMapTileChannel(const std::string& channel) {
   return HasPrefix(channel, kTempMapPrefix) && channel != kTempMapAckChannel;
+}
+
+// Who may send on `channel` (docs/security.md): the downlink and STATUS_<aggregator> belong
+// to the aggregator's process name, a vehicle's channels (TEMPMAP_<id>, POSE_<id>,
+// DIVERGENCE_<id>, CANDIDATES_*_<id>, STATUS_agent_<id>) to vehicle <id>, MAP_REQUEST to any
+// member of the fleet (""); none for channels no fleet process sends (the sensor group).
+inline std::optional<std::string> ChannelOwner(const std::string& channel,
+                                               const std::string& aggregator) {
+  if (channel == kTempMapAckChannel || channel == kMapDeltaChannel ||
+      channel == kMapKeyframeChannel || channel == kMergeReportChannel ||
+      channel == kMapCandidatesChannel || channel == StatusChannel(aggregator))
+    return aggregator;
+  if (channel == kMapRequestChannel) return std::string();
+  for (const char* prefix : {kAgentStatusPrefix, kPosePrefix, kDivergencePrefix,
+                             kCandidatesFreePrefix, kCandidatesHeldPrefix, kTempMapPrefix}) {
+    if (HasPrefix(channel, prefix)) return ChannelSuffix(channel, prefix);
+  }
+  return std::nullopt;
 }
 
 }  // namespace fleetmap::lcmtypes

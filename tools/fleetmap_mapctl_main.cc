@@ -3,6 +3,7 @@
 // recover what a damaged folder still holds.
 // The algorithms are in tools/mapctl (library fleetmap_mapctl); this is files and flags.
 // See --help and docs/operations.md.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -337,15 +338,9 @@ void PrintRecovery(const mapctl::Recovery& r) {
 
 int Recover(const Args& a) {
   std::vector<std::string> rest = a.rest;
-  bool dry_run = false;
-  for (auto it = rest.begin(); it != rest.end();) {
-    if (*it != "--dry-run") {
-      ++it;
-      continue;
-    }
-    dry_run = true;
-    it = rest.erase(it);
-  }
+  const auto flags = std::remove(rest.begin(), rest.end(), std::string("--dry-run"));
+  const bool dry_run = flags != rest.end();
+  rest.erase(flags, rest.end());
   if (!rest.empty()) return Usage("recover takes --dry-run only");
   auto map = core::LoadMapServerMap(a.map);
   if (!map.ok()) return Fail(map.status());

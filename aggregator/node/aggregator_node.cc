@@ -129,9 +129,7 @@ void AggregatorNode::OnMessage(const std::string& channel, const void* data, int
   // TEMPMAP_<id>, CANDIDATES_FREE_<id> and CANDIDATES_HELD_<id> belong to vehicle <id>; any
   // member of the fleet may ask for maps.
   const std::string owner =
-      seen_free ? lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesFreePrefix)
-      : held    ? lcmtypes::ChannelSuffix(channel, lcmtypes::kCandidatesHeldPrefix)
-                : lcmtypes::ChannelSuffix(channel, lcmtypes::kTempMapPrefix);
+      lcmtypes::ChannelOwner(channel, options_.process_name).value_or(std::string());
   auth::Opened opened;
   const auth::Verdict verdict = verifier_.Open(channel, data, size, owner, &opened);
   if (verdict != auth::Verdict::kAccepted) {

@@ -126,10 +126,9 @@ core::Result<AggregatorProcessConfig> Configure(const Args& args) {
     std::fprintf(stderr, "fleetmap-aggregator: no fleet key: messages are not authenticated\n");
   }
   // Acknowledged tiles are kept only by a live run with a state folder: a replay sends no
-  // acknowledgement.
-  if (!config.state_dir.empty() && args.replay.empty())
-    config.node.spool_dir = config.state_dir + "/incoming";
+  // acknowledgement. Likewise only a live run asks the fleet for what a recovery lost.
   if (!config.state_dir.empty() && args.replay.empty()) {
+    config.node.spool_dir = config.state_dir + "/incoming";
     std::optional<aggregator::RecoveryMarker> recovery;
     FLEETMAP_ASSIGN_OR_RETURN(recovery, aggregator::ReadRecoveryMarker(config.state_dir));
     if (recovery) {

@@ -63,12 +63,7 @@ class RecordedRunTest : public ::testing::Test {
     return data;
   }
   static std::string Owner(const std::string& channel) {
-    for (const char* prefix : {lcmtypes::kAgentStatusPrefix, lcmtypes::kPosePrefix,
-                               lcmtypes::kDivergencePrefix, lcmtypes::kTempMapPrefix}) {
-      if (lcmtypes::HasPrefix(channel, prefix) && channel != lcmtypes::kTempMapAckChannel)
-        return lcmtypes::ChannelSuffix(channel, prefix);
-    }
-    return "aggregator";
+    return lcmtypes::ChannelOwner(channel, "aggregator").value();
   }
   auth::Signer& Signer(const std::string& sender) {
     auto it = signers_.find(sender);

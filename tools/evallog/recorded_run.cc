@@ -15,6 +15,7 @@
 #include "fleetmap/merge_report_t.hpp"
 #include "fleetmap/status_t.hpp"
 #include "lcmtypes/convert.h"
+#include "lcmtypes/status_counter.h"
 #include "lcmtypes/transport_convert.h"
 
 namespace fleetmap::evallog {
@@ -68,7 +69,8 @@ class Reader {
 
   void Handle(const Event& e) {
     Payload p{e.data.data(), static_cast<int>(e.data.size())};
-    const std::optional<std::string> owner = Owner(e.channel);
+    const std::optional<std::string> owner =
+        lcmtypes::ChannelOwner(e.channel, options_.aggregator_sender);
     if (owner) {
       const char* refused = Attribute(e, *owner, &p);
       if (refused != nullptr) return (void)++record_.fleet.messages_refused[refused];
@@ -116,23 +118,6 @@ class Reader {
 
  private:
   double SimTime(int64_t utime) const { return lcmtypes::FromUtime(utime) - options_.epoch_s; }
-
-  // The process a channel belongs to: "" for any member of the fleet (MAP_REQUEST); none for
-  // channels no fleet process sends (the sensor group).
-  std::optional<std::string> Owner(const std::string& channel) const {
-    using namespace lcmtypes;
-    if (channel == kTempMapAckChannel || channel == kMapDeltaChannel ||
-        channel == kMapKeyframeChannel || channel == kMergeReportChannel ||
-        channel == kMapCandidatesChannel || channel == StatusChannel(options_.aggregator_sender))
-      return options_.aggregator_sender;
-    if (channel == kMapRequestChannel) return std::string();
-    for (const char* prefix : {kAgentStatusPrefix, kPosePrefix, kDivergencePrefix,
-                               kCandidatesFreePrefix, kCandidatesHeldPrefix}) {
-      if (HasPrefix(channel, prefix)) return ChannelSuffix(channel, prefix);
-    }
-    if (IsTempMapTileChannel(channel)) return ChannelSuffix(channel, kTempMapPrefix);
-    return std::nullopt;
-  }
 
   // Null if the message is `owner`'s (and `p` then holds it without its trailer), else the
   // reason it is not.
@@ -271,12 +256,8 @@ class Reader {
   void OnAgentStatus(const Event& e, const Payload& p) {
     auto msg = DecodeOrCount<fleetmap::status_t>(p);
     if (!msg) return;
-    int64_t cpu_us = -1, rss_kb = -1;
-    const size_t n = std::min(msg->counter_names.size(), msg->counter_values.size());
-    for (size_t i = 0; i < n; ++i) {
-      if (msg->counter_names[i] == "cpu_time_us") cpu_us = msg->counter_values[i];
-      if (msg->counter_names[i] == "rss_kb") rss_kb = msg->counter_values[i];
-    }
+    const int64_t cpu_us = lcmtypes::StatusCounter(*msg, "cpu_time_us").value_or(-1);
+    const int64_t rss_kb = lcmtypes::StatusCounter(*msg, "rss_kb").value_or(-1);
     if (cpu_us < 0) return;  // an agent that does not report its usage
     auto [it, first] = record_.fleet.agent_usage.try_emplace(msg->process);
     AgentUsage& u = it->second;

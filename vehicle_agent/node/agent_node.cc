@@ -10,6 +10,7 @@
 #include "fleetmap/map_candidates_t.hpp"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "lcmtypes/convert.h"
+#include "lcmtypes/status_counter.h"
 #include "lcmtypes/transport_convert.h"
 #include "vehicle_agent/node/agent_messages.h"
 
@@ -281,13 +282,9 @@ void AgentNode::OnAggregatorStatus(const void* data, int size, double now_s) {
   if (m->map_version >= 0) follower_.OnRemoteVersion(m->map_version, now_s);
   // An aggregator that recovered its state folder names the recovery and the version it
   // kept: the merged maps this vehicle still holds from after it are sent again, once.
-  int64_t recovery_id = 0, recovered_version = -1;
-  const size_t n = std::min(m->counter_names.size(), m->counter_values.size());
-  for (size_t i = 0; i < n; ++i) {
-    if (m->counter_names[i] == lcmtypes::kRecoveryIdCounter) recovery_id = m->counter_values[i];
-    if (m->counter_names[i] == lcmtypes::kRecoveredVersionCounter)
-      recovered_version = m->counter_values[i];
-  }
+  const int64_t recovery_id = lcmtypes::StatusCounter(*m, lcmtypes::kRecoveryIdCounter).value_or(0);
+  const int64_t recovered_version =
+      lcmtypes::StatusCounter(*m, lcmtypes::kRecoveredVersionCounter).value_or(-1);
   if (recovery_id == 0 || recovered_version < 0 || recovery_id == answered_recovery_) return;
   answered_recovery_ = recovery_id;
   const int resent = outbox_.ResendMergedAfter(recovered_version, now_s);
