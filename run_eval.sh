@@ -15,7 +15,8 @@
 # "agents"), eval.S.paper_mode.* the same with the paper's alignment, eval.S.truthmaps.* the
 # aggregator alone fed perfect temporary maps with anchor errors up to 0.3 m / 3 deg, and
 # eval.S.truthmaps.paper_mode.* the same with the paper's alignment (docs/aggregator.md).
-# loc.global.*: global localization on the fleet scenario (fleetmap-locate-eval).
+# loc.global.*, loc.kidnapped.*: global localization and kidnapped vehicles on the fleet scenario
+# (fleetmap-locate-eval).
 # Per CARMEN log, real.L.*: the scan matcher and the log's odometry scored by the benchmark's
 # relations, and checks of the relations themselves (real.L.win60.ref_*, .scan_fit_*:
 # fleetmap-carmen-eval --audit, docs/localization.md).
@@ -101,7 +102,7 @@ for s in "${scenarios[@]}"; do
   evaluate "$s" ".truthmaps.paper_mode" --pipeline truthmaps --align-mode paper
 done
 # Global localization (vehicles switched on without a pose, 20 starts along the routes):
-# loc.global.* on the fleet scenario, or on your own.
+# loc.global.* and loc.kidnapped.* on the fleet scenario, or on your own.
 locate=""
 if [[ -n $scenario ]]; then locate=$scenario
 elif [[ -z $carmen ]]; then locate=$worlds/fleet.yaml; fi

@@ -85,7 +85,15 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   const LocalizerResult located = localizer_.Update(odom_, scan, options_.scanner_in_base);
   step.pose = located.estimate;
   step.localization = located.stats;
-  const bool well_localized = WellLocalized(step.pose);
+  if (located.stats.relocalized) {
+    // Everything since the vehicle got lost was seen from a wrong pose.
+    divergence_.Reset();
+    if (builder_.building()) {
+      builder_ = TempMapBuilder(options_.builder);
+      ++counters_.temp_maps_dropped;
+    }
+  }
+  const bool well_localized = WellLocalized(step.pose) && !located.stats.lost;
   step.divergence =
       divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps, well_localized);
   // From the localizer's clean odometry: a jump the tracker refused must not tear the

@@ -52,8 +52,10 @@ struct AgentCounters {
   int64_t scans = 0;
   int64_t temp_maps_started = 0;
   int64_t temp_maps_closed = 0;
-  int64_t temp_maps_split = 0;  // closed for size, time, a clock step or a scan gap while the
-                                // change went on
+  int64_t temp_maps_split = 0;    // closed for size, time, a clock step or a scan gap while the
+                                  // change went on
+  int64_t temp_maps_dropped = 0;  // being built when the vehicle found it was elsewhere: drawn
+                                  // from a wrong pose, never sent
 };
 
 class AgentPipeline {

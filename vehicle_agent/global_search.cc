@@ -112,6 +112,23 @@ std::vector<Eigen::Vector2f> UsedPoints(const std::vector<Eigen::Vector2f>& all,
 
 }  // namespace
 
+double GlobalSearch::Score(const std::vector<Eigen::Vector2f>& points_in_base,
+                           const core::Pose2& base_in_map) const {
+  const std::vector<Eigen::Vector2f> points = UsedPoints(points_in_base, options_);
+  if (points.size() < 3) return 0.0;
+  const core::Pose2 base_in_grid = origin_.Inverse() * base_in_map;
+  const double c = std::cos(base_in_grid.theta_rad), s = std::sin(base_in_grid.theta_rad);
+  int sum = 0;
+  for (const Eigen::Vector2f& p : points) {
+    const double gx = base_in_grid.x_m + c * p.x() - s * p.y();
+    const double gy = base_in_grid.y_m + s * p.x() + c * p.y();
+    // Search's vehicle cell is floor(x / cell) and its offsets are rounded: the same here.
+    sum += grids_.front().At(static_cast<int>(std::floor(gx / cell_m_)),
+                             static_cast<int>(std::floor(gy / cell_m_)));
+  }
+  return sum / (255.0 * points.size());
+}
+
 std::vector<GlobalCandidate> GlobalSearch::Search(
     const std::vector<Eigen::Vector2f>& points_in_base) const {
   const std::vector<Eigen::Vector2f> points = UsedPoints(points_in_base, options_);

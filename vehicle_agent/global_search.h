@@ -48,6 +48,10 @@ class GlobalSearch {
   // m), best first; only poses on free cells, each scoring at least min_score. Empty when
   // none does, or with fewer than 3 points.
   std::vector<GlobalCandidate> Search(const std::vector<Eigen::Vector2f>& points_in_base) const;
+  // The score Search gives the vehicle at `base_in_map` (the same points, the finest grid):
+  // how a pose the filter holds compares with what the search finds. 0 with fewer than 3 points.
+  double Score(const std::vector<Eigen::Vector2f>& points_in_base,
+               const core::Pose2& base_in_map) const;
 
   int levels() const { return static_cast<int>(grids_.size()); }
 

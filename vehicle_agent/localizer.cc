@@ -38,7 +38,8 @@ Localizer::Localizer(const LocalizerOptions& options)
       rng_(options.seed),
       odometry_(options.max_odometry_step_m, options.max_odometry_step_rad,
                 options.max_odometry_speed_mps, options.max_odometry_yaw_rate_radps),
-      path_(options.prediction_step_m, options.prediction_step_rad) {
+      path_(options.prediction_step_m, options.prediction_step_rad),
+      hypotheses_(options.hypotheses) {
   assert(options.Validate().ok());
   if (options.w_avg_model == WAvgModel::kBeamModel) beam_model_ = MakeBeamModel(options.beam_model);
   moments_.mean = options.initial_pose_in_map;
@@ -85,29 +86,153 @@ core::Status Localizer::InitializeGlobal() {
   return core::OkStatus();
 }
 
-void Localizer::StartFromGlobalSearch(const core::LaserScan& scan,
-                                      const core::Pose2& scanner_in_base) {
-  global_pending_ = false;
-  ++counters_.global_searches;
+const GlobalSearch& Localizer::SearchOfCurrentMap() {
   if (!global_search_ || global_search_version_ != map_version_) {
     global_search_ = std::make_unique<GlobalSearch>(map_, options_.global_search);
     global_search_version_ = map_version_;
   }
+  return *global_search_;
+}
+
+std::vector<Eigen::Vector2f> Localizer::SearchPoints(const core::LaserScan& scan,
+                                                     const core::Pose2& scanner_in_base) const {
   std::vector<Eigen::Vector2f> points;
   ScanEndpoints(scan, scanner_in_base, static_cast<int>(scan.ranges_m.size()),
                 options_.likelihood_field.max_range_m, points);
-  const std::vector<GlobalCandidate> found = global_search_->Search(points);
+  return points;
+}
+
+void Localizer::StartFromGlobalSearch(const core::LaserScan& scan,
+                                      const core::Pose2& scanner_in_base) {
+  global_pending_ = false;
+  ++counters_.global_searches;
+  const std::vector<GlobalCandidate> found =
+      SearchOfCurrentMap().Search(SearchPoints(scan, scanner_in_base));
   if (found.empty()) return;  // the particles stay spread over the free space
+  RestartAround(found, scan, scanner_in_base);
+}
+
+void Localizer::RestartAround(const std::vector<GlobalCandidate>& found,
+                              const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                              const std::optional<core::Pose2>& held) {
   const Eigen::Matrix3d around =
       DiagonalCovariance(options_.global_sigma_xy_m, options_.global_sigma_theta_rad);
   const int each = std::max(1, options_.kld.max_particles / static_cast<int>(found.size()));
   ParticleSet particles;
+  std::vector<PoseHypothesis> seeds;
+  if (held) seeds.push_back({*held, options_.hypotheses.decide_margin});
   for (const GlobalCandidate& c : found) {
     ParticleSet near = SampleAroundPose(c.base_in_map, around, each, rng_);
     particles.insert(particles.end(), near.begin(), near.end());
+    seeds.push_back({c.base_in_map, 0.0});
   }
   for (Particle& p : particles) p.weight = 1.0 / particles.size();
   Restart(std::move(particles));
+  ScanEndpoints(scan, scanner_in_base, options_.max_beams, options_.likelihood_field.max_range_m,
+                endpoints_);
+  hypotheses_.Start(seeds, field_, endpoints_);
+  FollowHypotheses();
+}
+
+void Localizer::TrackHypotheses(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                                LocalizerStats& stats) {
+  force_update_ = false;
+  const core::Pose2 moved = core::Between(clean_odom_at_update_, OdomAtScan());
+  clean_odom_at_update_ = OdomAtScan();
+  path_.Restart(clean_odom_at_update_);
+  ScanEndpoints(scan, scanner_in_base, options_.max_beams, options_.likelihood_field.max_range_m,
+                endpoints_);
+  hypotheses_.Update(moved, field_, endpoints_);
+  stats.beams_scored = static_cast<int>(endpoints_.size());
+  FollowHypotheses();
+}
+
+void Localizer::FollowHypotheses() {
+  if (!hypotheses_.active()) return;
+  const core::Pose2 best = hypotheses_.best().base_in_map;
+  const double xy = options_.global_sigma_xy_m, theta = options_.global_sigma_theta_rad;
+  if (hypotheses_.decided()) {
+    Restart(
+        SampleAroundPose(best, DiagonalCovariance(xy, theta), options_.kld.max_particles, rng_));
+    return;
+  }
+  moments_.mean = best;
+  moments_.covariance = hypotheses_.Covariance(Eigen::Vector3d(xy * xy, xy * xy, theta * theta));
+}
+
+// An end point is explained when it lies near a mapped obstacle, or when its beam ended short
+// of one in space the map holds free (a pallet, a person, a vehicle that is not in the map:
+// the building's changes, not a wrong pose). Only beams that went through a mapped obstacle,
+// or ended far from any in unknown space, speak against the pose.
+double Localizer::ExplainedShare(const core::Pose2& base_in_map,
+                                 const core::Pose2& scanner_in_base) const {
+  if (endpoints_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const core::GridGeometry& g = map_.geometry();
+  const double c = std::cos(base_in_map.theta_rad), s = std::sin(base_in_map.theta_rad);
+  const auto in_map = [&](double x, double y) {
+    return Eigen::Vector2d(base_in_map.x_m + c * x - s * y, base_in_map.y_m + s * x + c * y);
+  };
+  const Eigen::Vector2d origin = in_map(scanner_in_base.x_m, scanner_in_base.y_m);
+  int explained = 0;
+  for (const Eigen::Vector2f& p : endpoints_) {
+    const Eigen::Vector2d end = in_map(p.x(), p.y());
+    if (field_.DistanceAt(end) <= options_.lost_explained_distance_m) {
+      ++explained;
+      continue;
+    }
+    const core::CellIndex end_cell = g.WorldToCell(end);
+    if (!g.Contains(end_cell) || map_.state(end_cell) != core::CellState::kFree) continue;
+    // Short: nothing mapped along the beam up to lost_explained_distance_m before its end.
+    const double length = (end - origin).norm() - options_.lost_explained_distance_m;
+    const double step = 0.5 * g.resolution_m();
+    bool through = false;
+    for (double d = 0.0; d < length && !through; d += step) {
+      const core::CellIndex cell = g.WorldToCell(origin + (end - origin).normalized() * d);
+      through = g.Contains(cell) && map_.state(cell) == core::CellState::kOccupied;
+    }
+    explained += !through;
+  }
+  return static_cast<double>(explained) / endpoints_.size();
+}
+
+void Localizer::CheckLost(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                          LocalizerStats& stats) {
+  stats.lost = lost_;
+  if (options_.lost_after_s <= 0 || std::isnan(stats.explained_share)) return;
+  const double now_s = scans_.last_stamp_s();
+  if (stats.explained_share >= options_.lost_explained_share) {
+    stats.lost = lost_ = false;
+    unexplained_since_s_ = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  if (std::isnan(unexplained_since_s_)) {
+    unexplained_since_s_ = now_s;
+    lost_search_period_s_ = options_.lost_after_s;
+    next_lost_search_s_ = now_s + lost_search_period_s_;
+  }
+  if (now_s < next_lost_search_s_) return;
+  ++counters_.global_searches;
+  ++counters_.lost_searches;
+  const GlobalSearch& search = SearchOfCurrentMap();
+  const std::vector<Eigen::Vector2f> points = SearchPoints(scan, scanner_in_base);
+  const std::vector<GlobalCandidate> found = search.Search(points);
+  // A map that changed around a well-placed vehicle explains less everywhere: only a pose that
+  // fits clearly better than the estimate moves the particles, and only when the scan tells
+  // places apart (a vehicle facing a new row of pallets sees one flat face, which fits as well
+  // at every wall: seen on the hall, 32 candidates all scoring 0.80). Otherwise look again
+  // later, and less often while nothing better turns up.
+  constexpr double kAlikeScore = 0.02;
+  const bool alike = static_cast<int>(found.size()) == options_.global_search.max_candidates &&
+                     found.front().score - found.back().score < kAlikeScore;
+  if (found.empty() || alike ||
+      found.front().score < search.Score(points, CurrentPose()) + options_.relocalize_margin) {
+    lost_search_period_s_ = std::min(2 * lost_search_period_s_, options_.lost_max_search_period_s);
+    next_lost_search_s_ = now_s + lost_search_period_s_;
+    return;
+  }
+  ++counters_.relocalizations;
+  stats.lost = lost_ = stats.relocalized = true;
+  RestartAround(found, scan, scanner_in_base, CurrentPose());
 }
 
 void Localizer::Restart(ParticleSet particles) {
@@ -117,6 +242,8 @@ void Localizer::Restart(ParticleSet particles) {
   moments_ = ComputeMoments(particles_);
   clean_odom_at_update_ = OdomAtScan();
   path_.Restart(clean_odom_at_update_);
+  unexplained_since_s_ = std::numeric_limits<double>::quiet_NaN();  // judged from here on
+  hypotheses_.Clear();
 }
 
 core::Status Localizer::AddExternalPose(const core::PoseEstimate& pose_in_map) {
@@ -145,8 +272,16 @@ LocalizerResult Localizer::Update(const core::OdometrySample& odom, const core::
   stats.external = PassingThrough(scans_.last_stamp_s());
   if (!stats.external && scan_ok && has_map_ && initialized_ && global_pending_)
     StartFromGlobalSearch(scan, scanner_in_base);
-  if (!stats.external && scan_ok && has_map_ && initialized_ && FilterDue())
+  const bool due = !stats.external && scan_ok && has_map_ && initialized_ && FilterDue();
+  if (due && hypotheses_.active()) {
+    TrackHypotheses(scan, scanner_in_base, stats);
+    stats.lost = lost_;
+  } else if (due) {
     FilterUpdate(scan, scanner_in_base, stats);
+    CheckLost(scan, scanner_in_base, stats);
+  } else {
+    stats.lost = lost_;
+  }
   LocalizerResult result{Estimate(stats.external), stats};
   if (scan_ok) {
     const ScanLikelihood& w_avg_model = beam_model_ ? *beam_model_ : field_;
@@ -265,6 +400,7 @@ void Localizer::FilterUpdate(const core::LaserScan& scan, const core::Pose2& sca
     }
   }
   moments_ = ComputeMoments(particles_);
+  if (!endpoints_.empty()) stats.explained_share = ExplainedShare(moments_.mean, scanner_in_base);
   ++counters_.filter_updates;
   stats.filter_updated = true;
   stats.beams_scored = static_cast<int>(endpoints_.size());

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -45,6 +46,8 @@ struct LocalizerCounters {
   int64_t external_poses_dropped = 0;  // invalid, out of order or ignored by the mode
   int64_t external_reinits = 0;        // particles re-initialised around an external pose
   int64_t global_searches = 0;         // scans searched for over the whole map
+  int64_t lost_searches = 0;           // ... of them because the vehicle was lost
+  int64_t relocalizations = 0;         // ... after which the particles restarted elsewhere
 };
 
 struct LocalizerStats {
@@ -57,6 +60,11 @@ struct LocalizerStats {
   bool filter_updated = false;  // prediction and measurement ran for this scan
   bool resampled = false;
   bool external = false;  // the estimate is the external pose carried forward (kPassThrough)
+  // Share of this update's end points near a mapped obstacle at the estimate; NaN without a
+  // filter update. Below options.lost_explained_share for lost_after_s: lost.
+  double explained_share = std::numeric_limits<double>::quiet_NaN();
+  bool lost = false;         // found elsewhere by a search, until a scan is explained again
+  bool relocalized = false;  // the particles restarted around a search's poses at this scan
   LocalizerCounters counters;
 };
 
@@ -96,6 +104,8 @@ class Localizer {
   bool initialized() const { return initialized_; }
   int32_t map_version() const { return map_version_; }
   const ParticleSet& particles() const { return particles_; }
+  // The poses a global search found, while they are followed (empty otherwise).
+  const PoseHypotheses& hypotheses() const { return hypotheses_; }
   const LocalizerCounters& counters() const { return counters_; }
   const LocalizerOptions& options() const { return options_; }
   // The odometry pose with every refused increment cut out (OdometryTracker).
@@ -110,6 +120,23 @@ class Localizer {
   void TrackOdometry(const core::OdometrySample& odom);
   // The global search for `scan` and the restart around what it found.
   void StartFromGlobalSearch(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
+  // Lost: the scans unexplained for lost_after_s; then searched for, and the particles moved
+  // when the search finds a clearly better pose.
+  void CheckLost(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                 LocalizerStats& stats);
+  const GlobalSearch& SearchOfCurrentMap();
+  std::vector<Eigen::Vector2f> SearchPoints(const core::LaserScan& scan,
+                                            const core::Pose2& scanner_in_base) const;
+  // Follows the poses found (PoseHypotheses) from this scan on; `held`: the estimate, as one
+  // more with a head start.
+  void RestartAround(const std::vector<GlobalCandidate>& found, const core::LaserScan& scan,
+                     const core::Pose2& scanner_in_base,
+                     const std::optional<core::Pose2>& held = std::nullopt);
+  void TrackHypotheses(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                       LocalizerStats& stats);
+  // The particles start at the hypothesis that won; until then the estimate is the best one.
+  void FollowHypotheses();
+  double ExplainedShare(const core::Pose2& base_in_map, const core::Pose2& scanner_in_base) const;
   bool AcceptScan(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
   bool PassingThrough(double stamp_s);
   bool FilterDue() const;
@@ -155,6 +182,11 @@ class Localizer {
   bool global_pending_ = false;                  // InitializeGlobal waits for a scan
   std::unique_ptr<GlobalSearch> global_search_;  // of map_version_, built when first needed
   int32_t global_search_version_ = -1;
+  PoseHypotheses hypotheses_;  // active from a global search until one pose leads
+  bool lost_ = false;
+  double unexplained_since_s_ = std::numeric_limits<double>::quiet_NaN();  // NaN: explained
+  double next_lost_search_s_ = 0.0;
+  double lost_search_period_s_ = 0.0;
 };
 
 }  // namespace fleetmap::vehicle_agent

@@ -44,8 +44,20 @@ core::Status LocalizerOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(initial_sigma_xy_m, "initial_sigma_xy_m"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(initial_sigma_theta_rad, "initial_sigma_theta_rad"));
   FLEETMAP_RETURN_IF_ERROR(global_search.Validate());
+  FLEETMAP_RETURN_IF_ERROR(hypotheses.Validate());
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(global_sigma_xy_m, "global_sigma_xy_m"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(global_sigma_theta_rad, "global_sigma_theta_rad"));
+  FLEETMAP_RETURN_IF_ERROR(CheckPositive(lost_explained_distance_m, "lost_explained_distance_m"));
+  FLEETMAP_RETURN_IF_ERROR(CheckOption(lost_explained_share >= 0 && lost_explained_share <= 1,
+                                       "LocalizerOptions.lost_explained_share",
+                                       lost_explained_share, "in [0, 1]"));
+  FLEETMAP_RETURN_IF_ERROR(CheckNonNegative(lost_after_s, "lost_after_s"));
+  FLEETMAP_RETURN_IF_ERROR(CheckOption(
+      lost_max_search_period_s >= lost_after_s && std::isfinite(lost_max_search_period_s),
+      "LocalizerOptions.lost_max_search_period_s", lost_max_search_period_s, ">= lost_after_s"));
+  FLEETMAP_RETURN_IF_ERROR(CheckOption(relocalize_margin >= 0 && relocalize_margin <= 1,
+                                       "LocalizerOptions.relocalize_margin", relocalize_margin,
+                                       "in [0, 1]"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(max_odometry_step_m, "max_odometry_step_m"));
   FLEETMAP_RETURN_IF_ERROR(CheckPositive(max_odometry_step_rad, "max_odometry_step_rad"));
   FLEETMAP_RETURN_IF_ERROR(CheckNonNegative(max_odometry_speed_mps, "max_odometry_speed_mps"));

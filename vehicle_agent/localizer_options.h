@@ -10,6 +10,7 @@
 #include "vehicle_agent/global_search.h"
 #include "vehicle_agent/likelihood_field.h"
 #include "vehicle_agent/motion_model.h"
+#include "vehicle_agent/pose_hypotheses.h"
 #include "vehicle_agent/resampling.h"
 
 namespace fleetmap::vehicle_agent {
@@ -65,12 +66,29 @@ struct LocalizerOptions {
   core::Pose2 initial_pose_in_map;
   double initial_sigma_xy_m = 0.5;             // > 0
   double initial_sigma_theta_rad = M_PI / 12;  // > 0
-  // kGlobal: the first scan is searched for over the whole map (global_search.h) and the
-  // particles start around the distinct poses that fit it, this far around each, m and rad
-  // (> 0 each); where nothing fits, over the whole free space.
+  // kGlobal: the first scan is searched for over the whole map (global_search.h), the
+  // distinct poses that fit it are followed scan by scan until one leads (pose_hypotheses.h),
+  // and the particles start there, this far around it, m and rad (> 0 each); where nothing
+  // fits, the particles spread over the whole free space.
   GlobalSearchOptions global_search;
+  PoseHypothesesOptions hypotheses;
   double global_sigma_xy_m = 0.1;
   double global_sigma_theta_rad = 0.035;
+  // --- lost (a kidnapped vehicle, a wrong start) ---
+  // A scan is unexplained when fewer than lost_explained_share of its scored end points lie
+  // within lost_explained_distance_m of a mapped obstacle at the estimate or ended short of
+  // one in mapped free space (objects not in the map are the building's changes). Unexplained
+  // for lost_after_s, the scan is searched for over the whole map, and when the best pose
+  // found scores relocalize_margin more than the estimate (the search's score, [0, 1]) and
+  // the scan tells places apart, the vehicle is lost: the poses found are followed, the
+  // estimate among them with a head start (docs/localization.md, "Lost and kidnapped").
+  // Otherwise the search is tried again after twice the wait, up to
+  // lost_max_search_period_s. lost_after_s 0: never searched.
+  double lost_explained_distance_m = 0.3;  // > 0
+  double lost_explained_share = 0.8;       // [0, 1]
+  double lost_after_s = 2.0;               // >= 0
+  double lost_max_search_period_s = 30.0;  // >= lost_after_s
+  double relocalize_margin = 0.15;         // [0, 1]
   // --- bad input ---
   // One odometry increment larger than this (between two consecutive samples) is a jump (a
   // reset of the odometry frame, a glitch): it is dropped, not applied. > 0.

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "tests/vehicle_agent/test_grids.h"
-#include "vehicle_agent/scan_endpoints.h"
 
 namespace fleetmap::vehicle_agent {
 namespace {
@@ -22,10 +21,7 @@ core::OccupancyGrid Room(core::Pose2 origin = {}) {
 
 std::vector<Eigen::Vector2f> PointsSeenFrom(const core::OccupancyGrid& map,
                                             const core::Pose2& base_in_map) {
-  const core::LaserScan scan = test_grids::PerfectScan(map, base_in_map);
-  std::vector<Eigen::Vector2f> points;
-  ScanEndpoints(scan, core::Pose2(), 360, 30.0, points);
-  return points;
+  return test_grids::EndpointsSeenFrom(map, base_in_map, 360);
 }
 
 void ExpectNear(const core::Pose2& found, const core::Pose2& truth) {
@@ -91,6 +87,21 @@ TEST(GlobalSearchTest, ASymmetricRoomGivesEveryPoseThatFits) {
   EXPECT_EQ(near_truth, 1);
   EXPECT_EQ(near_twin, 1);
   EXPECT_NEAR(found[0].score, found[1].score, 0.05);
+}
+
+// Score is the search's own measure at one pose: the best found scores what the truth scores,
+// a pose a metre off far less; the localizer compares the two to decide it is lost.
+TEST(GlobalSearchTest, ScoresAPoseAsTheSearchDoes) {
+  const core::OccupancyGrid map = Room();
+  const GlobalSearch search(map, {});
+  const core::Pose2 truth(5.0, 3.0, -2.0);
+  const auto points = PointsSeenFrom(map, truth);
+  const auto found = search.Search(points);
+  ASSERT_FALSE(found.empty());
+  EXPECT_NEAR(search.Score(points, truth), found.front().score, 0.1);
+  EXPECT_GT(search.Score(points, truth), 0.8);
+  EXPECT_LT(search.Score(points, core::Pose2(6.0, 3.5, -1.8)), 0.5);
+  EXPECT_EQ(search.Score({{1.0f, 0.0f}}, truth), 0.0);
 }
 
 TEST(GlobalSearchTest, TooFewPointsOrNoFitGiveNothing) {

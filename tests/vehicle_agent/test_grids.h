@@ -7,6 +7,7 @@
 #include "core/occupancy_grid.h"
 #include "core/ray_caster.h"
 #include "core/scan.h"
+#include "vehicle_agent/scan_endpoints.h"
 
 namespace fleetmap::vehicle_agent::test_grids {
 
@@ -49,6 +50,16 @@ inline core::LaserScan PerfectScan(const core::OccupancyGrid& grid,
     scan.ranges_m.push_back(r < 30.0 ? float(r) : INFINITY);
   }
   return scan;
+}
+
+// The end points (vehicle frame) of PerfectScan seen from `base_in_map`, at most `max_beams`.
+inline std::vector<Eigen::Vector2f> EndpointsSeenFrom(const core::OccupancyGrid& map,
+                                                      const core::Pose2& base_in_map,
+                                                      int max_beams) {
+  const core::LaserScan scan = PerfectScan(map, base_in_map);
+  std::vector<Eigen::Vector2f> points;
+  ScanEndpoints(scan, core::Pose2(), max_beams, 30.0, points);
+  return points;
 }
 
 }  // namespace fleetmap::vehicle_agent::test_grids

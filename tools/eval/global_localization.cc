@@ -12,9 +12,11 @@
 namespace fleetmap::eval {
 
 core::Status GlobalLocalizationOptions::Validate() const {
-  if (!(starts >= 1 && drive_s > 0 && hold_s >= 0 && tolerance_m > 0 && tolerance_rad > 0))
+  if (!(starts >= 1 && drive_s > 0 && hold_s >= 0 && tolerance_m > 0 && tolerance_rad > 0 &&
+        kidnap_m > 0 && kidnap_rad >= 0))
     return core::InvalidArgument(
-        "global localization: starts >= 1, drive_s > 0, hold_s >= 0, tolerances > 0");
+        "global localization: starts >= 1, drive_s > 0, hold_s >= 0, tolerances > 0, "
+        "kidnap_m > 0, kidnap_rad >= 0");
   return localizer.Validate();
 }
 
@@ -34,7 +36,17 @@ struct Run {
   core::OdometrySample odom;
   bool has_odom = false;
   double right_since_s = std::numeric_limits<double>::quiet_NaN();  // NaN: wrong now
+  bool started = false;
 };
+
+// Start i's kidnapping: off the truth by kidnap_m in a direction that turns by the golden
+// angle from start to start, and turned one way or the other.
+core::Pose2 KidnappedPose(const core::Pose2& truth, int i, const GlobalLocalizationOptions& o) {
+  const double direction = 2.399963 * i;
+  return core::Pose2(
+      truth.x_m + o.kidnap_m * std::cos(direction), truth.y_m + o.kidnap_m * std::sin(direction),
+      core::NormalizeAngle(truth.theta_rad + (i % 2 ? o.kidnap_rad : -o.kidnap_rad)));
+}
 
 }  // namespace
 
@@ -48,7 +60,9 @@ core::Result<GlobalLocalizationResult> EvaluateGlobalLocalization(
     return core::InvalidArgument("global localization: the scenario needs vehicles and more than " +
                                  std::to_string(window_s) + " s");
   vehicle_agent::LocalizerOptions localizer = options.localizer;
-  localizer.initial_pose_mode = vehicle_agent::InitialPoseMode::kGlobal;
+  const bool kidnapped = options.kind == StartKind::kKidnapped;
+  localizer.initial_pose_mode = kidnapped ? vehicle_agent::InitialPoseMode::kFromOptions
+                                          : vehicle_agent::InitialPoseMode::kGlobal;
   // Starts: vehicle i mod V, at times spread evenly over what leaves a whole window.
   std::vector<Run> runs(static_cast<size_t>(options.starts));
   const int per_vehicle =
@@ -83,6 +97,13 @@ core::Result<GlobalLocalizationResult> EvaluateGlobalLocalization(
       const double since = scan->scan.stamp_s - r.start.start_s;
       if (r.start.vehicle != scan->vehicle || since < 0 || since > window_s || !r.has_odom)
         continue;
+      if (kidnapped && !r.started) {  // sure of a wrong pose: 5 cm and 1 degree
+        const Eigen::Matrix3d sure = Eigen::Vector3d(0.05, 0.05, 0.0175).cwiseAbs2().asDiagonal();
+        FLEETMAP_RETURN_IF_ERROR(r.localizer->InitializeAt(
+            KidnappedPose(scan->true_base_pose, static_cast<int>(&r - runs.data()), options),
+            sure));
+      }
+      r.started = true;
       const auto result =
           r.localizer->Update(r.odom, scan->scan, vehicles[scan->vehicle].scanner_mount);
       const core::Pose2 e = core::Between(scan->true_base_pose, result.estimate.pose_in_map);
@@ -94,6 +115,7 @@ core::Result<GlobalLocalizationResult> EvaluateGlobalLocalization(
     }
   }
   GlobalLocalizationResult out;
+  out.kind = options.kind;
   for (Run& r : runs) {
     r.start.time_to_converge_s = r.right_since_s;
     r.start.localized = !std::isnan(r.right_since_s) && r.right_since_s <= options.drive_s;
@@ -108,19 +130,19 @@ core::Result<std::string> GlobalLocalizationFigureLines(const GlobalLocalization
   for (const GlobalStart& s : result.starts)
     if (s.localized) times.push_back(s.time_to_converge_s);
   std::sort(times.begin(), times.end());
+  const bool kidnapped = result.kind == StartKind::kKidnapped;
+  const char* prefix = kidnapped ? "loc.kidnapped" : "loc.global";
+  const char* time = kidnapped ? "time_to_recover_s" : "time_to_converge_s";
   char text[512];
-  int n = std::snprintf(text, sizeof(text),
-                        "loc.global.success_share %.4g ratio\nloc.global.starts %zu count\n",
-                        result.success_share(), result.starts.size());
+  int n = std::snprintf(text, sizeof(text), "%s.success_share %.4g ratio\n%s.starts %zu count\n",
+                        prefix, result.success_share(), prefix, result.starts.size());
   std::string out(text, static_cast<size_t>(n));
   if (!times.empty()) {
     const double median = times.size() % 2
                               ? times[times.size() / 2]
                               : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
-    n = std::snprintf(
-        text, sizeof(text),
-        "loc.global.time_to_converge_s %.4g s\nloc.global.time_to_converge_s.max %.4g s\n", median,
-        times.back());
+    n = std::snprintf(text, sizeof(text), "%s.%s %.4g s\n%s.%s.max %.4g s\n", prefix, time, median,
+                      prefix, time, times.back());
     out.append(text, static_cast<size_t>(n));
   }
   return out;

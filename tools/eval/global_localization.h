@@ -1,8 +1,9 @@
 // How well a vehicle finds itself on a known map without a pose (global localization,
-// vehicle_agent/global_search.h): vehicles switched on at start poses spread over the
-// scenario's routes and times, each localizer from its first scan on; a start succeeds when
-// the estimate comes within tolerance within `drive_s` and stays there for `hold_s` more.
-// One pass of the simulator serves every start.
+// vehicle_agent/global_search.h), or when it was carried off (the kidnapped robot: it holds a
+// confident pose kidnap_m away from the truth): at start poses spread over the scenario's
+// routes and times, each localizer from its first scan on; a start succeeds when the
+// estimate comes within tolerance within `drive_s` and stays there for `hold_s` more. One
+// pass of the simulator serves every start.
 #pragma once
 
 #include <vector>
@@ -12,7 +13,15 @@
 
 namespace fleetmap::eval {
 
+enum class StartKind {
+  kNoPose,     // switched on without a pose: global localization (loc.global.*)
+  kKidnapped,  // sure of a pose kidnap_m and kidnap_rad off the truth (loc.kidnapped.*)
+};
+
 struct GlobalLocalizationOptions {
+  StartKind kind = StartKind::kNoPose;
+  double kidnap_m = 5.0;          // kKidnapped: the believed pose this far off, m, > 0 ...
+  double kidnap_rad = 0.5;        // ... and turned by this, rad, >= 0
   int starts = 20;                // start poses, spread over the vehicles and their routes, >= 1
   double drive_s = 10.0;          // allowed until the pose is right, s, > 0
   double hold_s = 5.0;            // ... and it must stay right this long after, s, >= 0
@@ -31,6 +40,7 @@ struct GlobalStart {
 };
 
 struct GlobalLocalizationResult {
+  StartKind kind = StartKind::kNoPose;
   std::vector<GlobalStart> starts;
   double success_share() const;  // NaN without a start
 };
@@ -40,7 +50,8 @@ core::Result<GlobalLocalizationResult> EvaluateGlobalLocalization(
     const sim::World& world, const GlobalLocalizationOptions& options);
 
 // `loc.global.*` figure lines: success_share (ratio), time_to_converge_s (median over the
-// starts that localized; also .max), starts (count); an error when nothing was measured.
+// starts that localized; also .max), starts (count); for kidnapped starts `loc.kidnapped.*`
+// with time_to_recover_s. An error when nothing was measured.
 core::Result<std::string> GlobalLocalizationFigureLines(const GlobalLocalizationResult& result);
 
 }  // namespace fleetmap::eval

@@ -179,7 +179,8 @@ core::Status ReadLocalization(const YamlReader& r, const YAML::Node& n, Localize
       CheckKeys(r, n, "localization",
                 {"max_beams", "min_particles", "max_particles", "update_min_translation_m",
                  "update_min_rotation_rad", "w_avg_model", "external_sigma_xy_m",
-                 "external_sigma_theta_rad", "seed"}));
+                 "external_sigma_theta_rad", "lost_after_s", "lost_explained_share",
+                 "lost_max_search_period_s", "relocalize_margin", "seed"}));
   READ_AS(int, n, "max_beams", "localization.", l.max_beams);
   READ_AS(int, n, "min_particles", "localization.", l.kld.min_particles);
   READ_AS(int, n, "max_particles", "localization.", l.kld.max_particles);
@@ -191,6 +192,10 @@ core::Status ReadLocalization(const YamlReader& r, const YAML::Node& n, Localize
       l.w_avg_model));
   READ_NUMBER(n, "external_sigma_xy_m", "localization.", l.external_sigma_xy_m);
   READ_NUMBER(n, "external_sigma_theta_rad", "localization.", l.external_sigma_theta_rad);
+  READ_NUMBER(n, "lost_after_s", "localization.", l.lost_after_s);
+  READ_NUMBER(n, "lost_explained_share", "localization.", l.lost_explained_share);
+  READ_NUMBER(n, "lost_max_search_period_s", "localization.", l.lost_max_search_period_s);
+  READ_NUMBER(n, "relocalize_margin", "localization.", l.relocalize_margin);
   READ_AS(uint32_t, n, "seed", "localization.", l.seed);
   return core::OkStatus();
 }
@@ -257,6 +262,16 @@ core::Status ReadOutbox(const YamlReader& r, const YAML::Node& n, OutboxOptions&
   READ_AS(int, n, "tile_size_cells", "outbox.", o.tile_size_cells);
   READ_NUMBER(n, "retain_merged_s", "outbox.", o.retain_merged_s);
   READ_AS(int64_t, n, "max_retained_bytes", "outbox.", o.max_retained_bytes);
+  return core::OkStatus();
+}
+
+core::Status ReadLastPose(const YamlReader& r, const YAML::Node& n, KeptPoseOptions& o) {
+  if (!n) return core::OkStatus();
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckKeys(r, n, "last_pose", {"period_s", "same_odometry_m", "same_odometry_rad"}));
+  READ_NUMBER(n, "period_s", "last_pose.", o.period_s);
+  READ_NUMBER(n, "same_odometry_m", "last_pose.", o.same_odometry_m);
+  READ_NUMBER(n, "same_odometry_rad", "last_pose.", o.same_odometry_rad);
   return core::OkStatus();
 }
 
@@ -355,7 +370,7 @@ core::Result<AgentConfig> ParseAgentConfig(const std::string& yaml_text, const s
       CheckKeys(r, root, "",
                 {"vehicle_id", "map", "state_dir", "final_map", "key_file", "scanner_mount",
                  "initial_pose", "urls", "inputs", "localization", "divergence", "builder",
-                 "candidate_watch", "outbox", "map_updates", "rates", "pose_link"}));
+                 "candidate_watch", "outbox", "map_updates", "rates", "pose_link", "last_pose"}));
   AgentConfig c;
   AgentPipelineOptions& p = c.node.pipeline;
   FLEETMAP_ASSIGN_OR_RETURN(p.vehicle_id,
@@ -374,6 +389,7 @@ core::Result<AgentConfig> ParseAgentConfig(const std::string& yaml_text, const s
   FLEETMAP_RETURN_IF_ERROR(ReadBuilder(r, Section(root, "builder"), p.builder));
   FLEETMAP_RETURN_IF_ERROR(ReadCandidateWatch(r, Section(root, "candidate_watch"), p));
   FLEETMAP_RETURN_IF_ERROR(ReadOutbox(r, Section(root, "outbox"), c.node.outbox));
+  FLEETMAP_RETURN_IF_ERROR(ReadLastPose(r, Section(root, "last_pose"), c.node.last_pose));
   FLEETMAP_RETURN_IF_ERROR(ReadRates(r, Section(root, "rates"), c));
   FLEETMAP_RETURN_IF_ERROR(ReadLinks(r, root, c));
   c.FinishDefaults();

@@ -29,9 +29,12 @@ struct AgentNodeCounters {
   int64_t maps_merged = 0, maps_rejected = 0, maps_duplicate = 0;
   int64_t map_swaps_failed = 0;  // the pipeline refused a map version
   int64_t publish_failures = 0;
-  int64_t auth_refused = 0;       // downlink messages the verifier refused (by cause: auth_*)
-  int64_t seen_free_reports = 0;  // CANDIDATES_FREE_<id> messages sent
-  int64_t held_reports = 0;       // CANDIDATES_HELD_<id> messages sent
+  int64_t auth_refused = 0;           // downlink messages the verifier refused (by cause: auth_*)
+  int64_t seen_free_reports = 0;      // CANDIDATES_FREE_<id> messages sent
+  int64_t held_reports = 0;           // CANDIDATES_HELD_<id> messages sent
+  int64_t starts_from_last_pose = 0;  // the kept pose held at start (pose_store.h)
+  int64_t lost = 0;                   // 1 while the localizer finds the vehicle lost, else 0
+  int64_t tempmaps_dropped_lost = 0;  // being built when the vehicle relocalized: not sent
 };
 
 using NamedCounters = std::vector<std::pair<std::string, int64_t>>;

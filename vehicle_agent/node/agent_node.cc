@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
 
@@ -54,6 +55,15 @@ core::Result<std::unique_ptr<AgentNode>> AgentNode::Create(
     FLEETMAP_RETURN_IF_ERROR(node->follower_.Seed(std::move(*static_map), 0).WithContext("--map"));
     node->map_dirty_ = true;
   }
+  if (node->options_.last_pose.period_s > 0 &&
+      node->options_.initial_pose != InitialPoseSource::kFirstExternal) {
+    core::Result<KeptPose> kept = node->poses_.Load();
+    if (kept.ok()) {
+      node->kept_pose_ = *kept;
+    } else if (kept.status().code() != core::StatusCode::kNotFound) {
+      node->log_.Warning("last pose not used: " + kept.status().ToString());
+    }
+  }
   const int reloaded = node->outbox_.LoadPersisted(now_s);
   if (reloaded > 0) {
     node->log_.Info(std::to_string(reloaded) + " unacknowledged temporary map(s) reloaded from " +
@@ -67,6 +77,7 @@ AgentNode::AgentNode(AgentNodeOptions options, Publisher* publisher, LogSink log
       publisher_(publisher),
       log_(std::move(log)),
       sequences_(options_.outbox.state_dir),
+      poses_(options_.outbox.state_dir),
       pipeline_(options_.pipeline),
       outbox_(options_.outbox),
       follower_(options_.map),
@@ -334,7 +345,8 @@ void AgentNode::ApplyMap() {
   if (!first) return;
   // The first map initialises the filter (given pose or global), unless an external pose
   // is to do it.
-  pose_initialized_ = options_.initial_pose != InitialPoseSource::kFirstExternal;
+  // A kept pose waits for the first odometry sample, which tells whether it still holds.
+  pose_initialized_ = options_.initial_pose != InitialPoseSource::kFirstExternal && !kept_pose_;
   if (early_external_) InitializeFromExternal(*early_external_);
 }
 
@@ -342,7 +354,11 @@ void AgentNode::Process(const SensorInput& input, double now_s) {
   if (const auto* scan = std::get_if<core::LaserScan>(&input)) return ProcessScan(*scan, now_s);
   if (const auto* odom = std::get_if<core::OdometrySample>(&input)) {
     ++counters_.odometry;
-    return pipeline_.AddOdometry(*odom);
+    pipeline_.AddOdometry(*odom);
+    if (!odom->Validate().ok()) return;
+    odometry_ = odom->pose_in_odom;
+    if (kept_pose_) ResumeFromKeptPose(odom->pose_in_odom);
+    return;
   }
   ProcessExternalPose(std::get<ExternalPoseInput>(input).pose);
 }
@@ -379,8 +395,71 @@ void AgentNode::ProcessScan(const core::LaserScan& scan, double now_s) {
   const AgentStep step = pipeline_.AddScan(scan);
   ++counters_.scans;
   building_ = step.building;
+  ReportLocalization(step.localization);
+  KeepPose(step, now_s, /*now=*/false);
+  last_step_ = step;
   PublishStep(scan, step);
   if (step.closed_map) Keep(*step.closed_map, now_s);
+}
+
+void AgentNode::ResumeFromKeptPose(const core::Pose2& odometry) {
+  const KeptPose kept = *kept_pose_;
+  kept_pose_.reset();
+  if (map_applied_) pose_initialized_ = true;
+  if (!StillThere(kept, odometry, options_.last_pose)) {
+    const core::Pose2 moved = core::Between(kept.odometry, odometry);
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "last pose not used: the odometry moved %.2f m, %.3f rad since it was kept; ",
+                  std::hypot(moved.x_m, moved.y_m), moved.theta_rad);
+    log_.Info(text + std::string(options_.initial_pose == InitialPoseSource::kGlobal
+                                     ? "searching the whole map"
+                                     : "starting from the given pose"));
+    return;
+  }
+  const LocalizerOptions& l = options_.pipeline.localizer;
+  const Eigen::Matrix3d around =
+      Eigen::Vector3d(l.global_sigma_xy_m, l.global_sigma_xy_m, l.global_sigma_theta_rad)
+          .cwiseAbs2()
+          .asDiagonal();
+  const core::Status s = pipeline_.InitializeAt(kept.base_in_map, around);
+  if (!s.ok()) {
+    log_.Warning("last pose not used: " + s.ToString());
+    return;
+  }
+  ++counters_.starts_from_last_pose;
+  log_.Info("starting from the last pose kept in " + poses_.path() +
+            ": the vehicle has not moved since");
+}
+
+void AgentNode::KeepPose(const AgentStep& step, double now_s, bool now) {
+  if (!poses_.enabled() || !(options_.last_pose.period_s > 0) || !odometry_) return;
+  if (!now && now_s < next_keep_s_) return;
+  const double sigma_m =
+      std::sqrt(std::max(step.pose.covariance(0, 0), step.pose.covariance(1, 1)));
+  if (step.localization.lost || !(sigma_m <= options_.pipeline.candidate_watch_max_sigma_m))
+    return;  // only a pose worth starting from
+  if (last_kept_ && StillThere(*last_kept_, *odometry_, options_.last_pose)) return;
+  const KeptPose kept{step.pose.pose_in_map, *odometry_, step.pose.map_version};
+  next_keep_s_ = now_s + options_.last_pose.period_s;
+  const core::Status stored = poses_.Store(kept);
+  if (!stored.ok()) {
+    log_.Once("last pose", "cannot keep the last pose: " + stored.ToString());
+    return;
+  }
+  last_kept_ = kept;
+}
+
+void AgentNode::ReportLocalization(const LocalizerStats& stats) {
+  counters_.tempmaps_dropped_lost = pipeline_.counters().temp_maps_dropped;
+  if (stats.relocalized) {
+    log_.Warning(
+        "lost: the map has not explained the scans for a while and a search of the whole map "
+        "found poses that fit them clearly better; following those");
+  }
+  if (stats.lost == (counters_.lost != 0)) return;
+  counters_.lost = stats.lost;
+  if (!stats.lost) log_.Info("localized again: the map explains the scans");
 }
 
 void AgentNode::Keep(const core::TempMap& map, double now_s) {
@@ -417,6 +496,7 @@ void AgentNode::Shutdown(double now_s) {
   if (map_dirty_) ApplyMap();
   for (const SensorInput& input : queue_.TakeAll()) Process(input, now_s);
   if (std::optional<core::TempMap> last = pipeline_.Flush(now_s)) Keep(*last, now_s);
+  if (last_step_) KeepPose(*last_step_, now_s, /*now=*/true);
   building_ = false;
   SendTiles(now_s, /*all=*/true);  // at exit: what is queued goes now (it is on disk too)
   SendStatus(now_s);

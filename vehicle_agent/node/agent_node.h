@@ -97,6 +97,12 @@ class AgentNode {
   void ProcessExternalPose(const core::PoseEstimate& pose);
   void InitializeFromExternal(const core::PoseEstimate& pose);
   void ReserveSequences(int32_t from);  // stores `from` + a block as the next number
+  // At the first odometry sample: the kept pose, when the vehicle has not moved since.
+  void ResumeFromKeptPose(const core::Pose2& odometry);
+  // Keeps the pose of a well-localized vehicle that moved, at most once per period.
+  void KeepPose(const AgentStep& step, double now_s, bool now);
+  // Lost, found again and relocalized: said once per change, and in the counters.
+  void ReportLocalization(const LocalizerStats& stats);
   void Keep(const core::TempMap& map, double now_s);
   // Due tiles join the send queue; as many leave as the pacer allows (all of them: at exit).
   void SendTiles(double now_s, bool all = false);
@@ -112,6 +118,7 @@ class AgentNode {
   CauseLog log_;
   int64_t answered_recovery_ = 0;  // the aggregator's last recovery this vehicle answered
   SequenceStore sequences_;
+  PoseStore poses_;  // the last good pose (pose_store.h)
   // Numbers below this are on disk as used (reserved kSequenceBlock at a time).
   int32_t sequences_reserved_ = 1;
   AgentPipeline pipeline_;
@@ -123,6 +130,12 @@ class AgentNode {
   bool map_applied_ = false;
   int32_t applied_version_ = -1;
   bool pose_initialized_ = false;
+  // The kept pose (pose_store.h): read at start, used or not at the first odometry sample.
+  std::optional<KeptPose> kept_pose_;
+  std::optional<core::Pose2> odometry_;  // the last sample's pose
+  std::optional<KeptPose> last_kept_;    // stored by this run
+  double next_keep_s_ = 0.0;
+  std::optional<AgentStep> last_step_;                // the pose kept at exit
   std::optional<core::PoseEstimate> early_external_;  // before the first map
   bool building_ = false;
   CandidateParts candidates_;

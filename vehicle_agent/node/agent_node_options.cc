@@ -20,6 +20,7 @@ core::Status AgentNodeOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(pipeline.Validate());
   FLEETMAP_RETURN_IF_ERROR(outbox.Validate());
   FLEETMAP_RETURN_IF_ERROR(map.Validate());
+  FLEETMAP_RETURN_IF_ERROR(last_pose.Validate());
   if (queue.max_queued_scans < 1)
     return core::InvalidArgument("rates.max_queued_scans must be >= 1");
   if (queue.max_queued_inputs < 16)

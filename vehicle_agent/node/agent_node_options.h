@@ -11,6 +11,7 @@
 #include "vehicle_agent/node/input_queue.h"
 #include "vehicle_agent/node/map_follower.h"
 #include "vehicle_agent/node/node_io.h"
+#include "vehicle_agent/node/pose_store.h"
 #include "vehicle_agent/tempmap_outbox.h"
 
 namespace fleetmap::vehicle_agent::node {
@@ -30,6 +31,9 @@ struct AgentNodeOptions {
   MapFollowerOptions map;
   InputQueueOptions queue;
   InitialPoseSource initial_pose = InitialPoseSource::kGiven;
+  // The last good pose, kept in outbox.state_dir: a restart on a vehicle that has not moved
+  // starts there, before the given pose or a global search (not before kFirstExternal).
+  KeptPoseOptions last_pose;
   bool scans_from_lcm = true;      // SCAN_<id> on the sensor link (false: a scanner driver)
   bool odometry_from_lcm = true;   // ODOM_<id> on the sensor link (false: CAN or none)
   bool use_external_pose = false;  // EXTPOSE_<id> on the sensor link
