@@ -39,13 +39,15 @@ struct DriveResult {
   std::vector<AgentStep> steps;
   std::vector<core::Pose2> truth;
   double pallet_seen_s = NAN;
+  AgentCounters counters;
 };
 
 // `skip_scan(t)`: scans the agent does not get to (it fell behind); odometry all arrives.
 DriveResult Drive(
     const std::function<bool(double)>& skip_scan = [](double) { return false; },
     const std::function<void(AgentPipelineOptions&)>& configure = [](AgentPipelineOptions&) {},
-    const char* scenario_text = kScenario) {
+    const char* scenario_text = kScenario,
+    const std::function<void(double t_s, AgentPipeline&)>& before_scan = {}) {
   const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
   const auto scenario = sim::ParseScenario(scenario_text, dir + "pipeline_test.yaml").value();
   auto map = core::LoadMapServerMap(scenario.map_yaml).value();
@@ -66,6 +68,7 @@ DriveResult Drive(
     if (auto* o = std::get_if<sim::OdometryEvent>(&*e)) {
       pipeline.AddOdometry({o->stamp_s, o->odom_pose, o->v_mps, o->omega_radps});
     } else if (auto* s = std::get_if<sim::ScanEvent>(&*e); s && !skip_scan(s->scan.stamp_s)) {
+      if (before_scan) before_scan(s->scan.stamp_s, pipeline);
       AgentStep step = pipeline.AddScan(s->scan);
       if (step.closed_map) run.maps.push_back(*step.closed_map);
       run.truth.push_back(s->true_base_pose);
@@ -74,6 +77,7 @@ DriveResult Drive(
   }
   if (auto last = pipeline.Flush(simulator.now_s())) run.maps.push_back(*last);
   run.pallet_seen_s = simulator.observations().Seen(0, 0).appear_seen_s;
+  run.counters = pipeline.counters();
   return run;
 }
 
@@ -188,6 +192,43 @@ TEST(AgentPipelineTest, AMapBeingBuiltClosesAtAScanGapAndTheChangeGoesOnInANewOn
   bool spans = false;
   for (const core::TempMap& m : whole.maps) spans |= m.start_s < 9.5 && m.end_s >= 11.0;
   EXPECT_TRUE(spans);
+}
+
+// The vehicle's pose jumps 4.5 m across the aisle and turns while it maps the pallet (a
+// kidnapping): the scans stop making sense, it finds itself by a search, and the map it was
+// building then, anchored at the wrong pose, is dropped, not sent.
+TEST(AgentPipelineTest, AMapBeingBuiltWhenTheVehicleFindsItselfElsewhereIsDropped) {
+  bool carried_off = false;
+  const auto carry_off = [&](double t_s, AgentPipeline& pipeline) {
+    if (carried_off || t_s < 10.0) return;
+    carried_off = true;
+    const Eigen::Matrix3d sure = Eigen::Vector3d(0.0025, 0.0025, 0.0004).asDiagonal();
+    ASSERT_TRUE(pipeline.InitializeAt(core::Pose2(11.0, 8.5, 0.6), sure).ok());
+  };
+  const DriveResult run =
+      Drive([](double) { return false; }, [](AgentPipelineOptions&) {}, kScenario, carry_off);
+  double relocalized_s = NAN;
+  bool building_then = false;
+  for (size_t i = 0; i < run.steps.size(); ++i) {
+    if (!run.steps[i].localization.relocalized || !std::isnan(relocalized_s)) continue;
+    relocalized_s = run.steps[i].pose.stamp_s;
+    building_then = i > 0 && run.steps[i - 1].building;
+  }
+  ASSERT_FALSE(std::isnan(relocalized_s)) << "never found itself";
+  EXPECT_LT(relocalized_s, 15.0);
+  EXPECT_TRUE(building_then);
+  EXPECT_EQ(run.counters.temp_maps_dropped, 1);
+  // Every map sent starts where the vehicle truly was: the one begun from the wrong pose
+  // (d(t) rose with the pose wrong) is the one dropped.
+  for (const core::TempMap& m : run.maps) {
+    size_t k = 0;
+    while (k + 1 < run.steps.size() && run.steps[k].pose.stamp_s < m.start_s) ++k;
+    const core::Pose2 off = core::Between(run.truth[k], m.anchor_in_map);
+    EXPECT_LT(std::hypot(off.x_m, off.y_m), 0.2) << "map " << m.sequence << " from " << m.start_s;
+  }
+  // Back on the truth by the end.
+  const core::Pose2 d = core::Between(run.truth.back(), run.steps.back().pose.pose_in_map);
+  EXPECT_LT(std::hypot(d.x_m, d.y_m), 0.1);
 }
 
 }  // namespace
