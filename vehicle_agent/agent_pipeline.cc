@@ -94,6 +94,7 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
     }
   }
   const bool well_localized = WellLocalized(step.pose) && !located.stats.lost;
+  step.well_localized = well_localized;
   step.divergence =
       divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps, well_localized);
   // From the localizer's clean odometry: a jump the tracker refused must not tear the

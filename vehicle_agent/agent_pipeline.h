@@ -46,6 +46,7 @@ struct AgentStep {
   DivergenceSample divergence;              // the paper's Fig. 3 sample of this scan
   std::optional<core::TempMap> closed_map;  // a temporary map this scan completed
   bool building = false;                    // a temporary map is being built
+  bool well_localized = false;              // good enough to anchor a map (covariance, not lost)
 };
 
 struct AgentCounters {

@@ -183,11 +183,13 @@ double Localizer::ExplainedShare(const core::Pose2& base_in_map,
     const core::CellIndex end_cell = g.WorldToCell(end);
     if (!g.Contains(end_cell) || map_.state(end_cell) != core::CellState::kFree) continue;
     // Short: nothing mapped along the beam up to lost_explained_distance_m before its end.
-    const double length = (end - origin).norm() - options_.lost_explained_distance_m;
+    const Eigen::Vector2d beam = end - origin;
+    const double length = beam.norm() - options_.lost_explained_distance_m;
+    const Eigen::Vector2d direction = beam.normalized();
     const double step = 0.5 * g.resolution_m();
     bool through = false;
     for (double d = 0.0; d < length && !through; d += step) {
-      const core::CellIndex cell = g.WorldToCell(origin + (end - origin).normalized() * d);
+      const core::CellIndex cell = g.WorldToCell(origin + direction * d);
       through = g.Contains(cell) && map_.state(cell) == core::CellState::kOccupied;
     }
     explained += !through;

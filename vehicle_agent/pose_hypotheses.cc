@@ -30,6 +30,7 @@ core::Pose2 PoseHypotheses::Fit(const core::Pose2& start, const LikelihoodField&
   while (step_m >= options_.fit_min_step_m) {
     for (int move = 0; move < kMovesPerLevel; ++move) {
       core::Pose2 chosen = pose;
+      bool moved = false;
       for (const core::Pose2& d : {core::Pose2(step_m, 0, 0), core::Pose2(-step_m, 0, 0),
                                    core::Pose2(0, step_m, 0), core::Pose2(0, -step_m, 0),
                                    core::Pose2(0, 0, step_rad), core::Pose2(0, 0, -step_rad)}) {
@@ -39,10 +40,10 @@ core::Pose2 PoseHypotheses::Fit(const core::Pose2& start, const LikelihoodField&
         if (score > best) {
           best = score;
           chosen = candidate;
+          moved = true;
         }
       }
-      if (chosen.x_m == pose.x_m && chosen.y_m == pose.y_m && chosen.theta_rad == pose.theta_rad)
-        break;
+      if (!moved) break;
       pose = chosen;
     }
     step_m *= 0.5;

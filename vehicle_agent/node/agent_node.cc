@@ -435,10 +435,7 @@ void AgentNode::ResumeFromKeptPose(const core::Pose2& odometry) {
 void AgentNode::KeepPose(const AgentStep& step, double now_s, bool now) {
   if (!poses_.enabled() || !(options_.last_pose.period_s > 0) || !odometry_) return;
   if (!now && now_s < next_keep_s_) return;
-  const double sigma_m =
-      std::sqrt(std::max(step.pose.covariance(0, 0), step.pose.covariance(1, 1)));
-  if (step.localization.lost || !(sigma_m <= options_.pipeline.candidate_watch_max_sigma_m))
-    return;  // only a pose worth starting from
+  if (!step.well_localized) return;  // only a pose worth starting from
   if (last_kept_ && StillThere(*last_kept_, *odometry_, options_.last_pose)) return;
   const KeptPose kept{step.pose.pose_in_map, *odometry_, step.pose.map_version};
   next_keep_s_ = now_s + options_.last_pose.period_s;
