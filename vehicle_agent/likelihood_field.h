@@ -51,11 +51,12 @@ class LikelihoodField final : public ScanLikelihood {
                        const core::Pose2& base_in_map) const;
   // log p of one end point in the map frame.
   double LogLikelihoodAt(const Eigen::Vector2d& point_in_map) const;
-  // The clamped distance to the nearest occupied cell's surface, m (for tests).
+  // The clamped distance to the nearest occupied cell's surface, m.
   double DistanceAt(const Eigen::Vector2d& point_in_map) const;
+  // log p of an end point distance_m from the nearest surface.
+  double LogProbabilityOfDistance(double distance_m) const;
 
  private:
-  double LogProbabilityOfDistance(double distance_m) const;
   std::optional<size_t> CellOf(const Eigen::Vector2d& point_in_map) const;  // row-major index
 
   const LikelihoodFieldOptions options_;

@@ -7,6 +7,7 @@
 #include "vehicle_agent/particle_init.h"
 #include "vehicle_agent/resampling.h"
 #include "vehicle_agent/scan_endpoints.h"
+#include "vehicle_agent/short_beam.h"
 
 namespace fleetmap::vehicle_agent {
 namespace {
@@ -130,8 +131,26 @@ void Localizer::RestartAround(const std::vector<GlobalCandidate>& found,
   Restart(std::move(particles));
   ScanEndpoints(scan, scanner_in_base, options_.max_beams, options_.likelihood_field.max_range_m,
                 endpoints_);
-  hypotheses_.Start(seeds, field_, endpoints_);
+  hypotheses_.Start(seeds, {map_, field_, endpoints_, scanner_in_base});
+  search_full_ = static_cast<int>(found.size()) >= options_.global_search.max_candidates;
+  searched_at_travel_m_ = 0.0;
   FollowHypotheses();
+}
+
+void Localizer::SearchAgainIfAmbiguous(const core::LaserScan& scan,
+                                       const core::Pose2& scanner_in_base) {
+  const double every_m = options_.hypotheses.research_travel_m;
+  if (!search_full_ || every_m <= 0 || !hypotheses_.active() || hypotheses_.decided() ||
+      hypotheses_.travel_m() < searched_at_travel_m_ + every_m)
+    return;
+  ++counters_.global_searches;
+  const std::vector<GlobalCandidate> found =
+      SearchOfCurrentMap().Search(SearchPoints(scan, scanner_in_base));
+  search_full_ = static_cast<int>(found.size()) >= options_.global_search.max_candidates;
+  searched_at_travel_m_ = hypotheses_.travel_m();
+  std::vector<PoseHypothesis> seeds;
+  for (const GlobalCandidate& c : found) seeds.push_back({c.base_in_map, 0.0});
+  hypotheses_.Add(seeds, {map_, field_, endpoints_, scanner_in_base});
 }
 
 void Localizer::TrackHypotheses(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
@@ -142,7 +161,8 @@ void Localizer::TrackHypotheses(const core::LaserScan& scan, const core::Pose2& 
   path_.Restart(clean_odom_at_update_);
   ScanEndpoints(scan, scanner_in_base, options_.max_beams, options_.likelihood_field.max_range_m,
                 endpoints_);
-  hypotheses_.Update(moved, field_, endpoints_);
+  hypotheses_.Update(moved, {map_, field_, endpoints_, scanner_in_base});
+  SearchAgainIfAmbiguous(scan, scanner_in_base);
   stats.beams_scored = static_cast<int>(endpoints_.size());
   FollowHypotheses();
 }
@@ -167,32 +187,14 @@ void Localizer::FollowHypotheses() {
 double Localizer::ExplainedShare(const core::Pose2& base_in_map,
                                  const core::Pose2& scanner_in_base) const {
   if (endpoints_.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const core::GridGeometry& g = map_.geometry();
-  const double c = std::cos(base_in_map.theta_rad), s = std::sin(base_in_map.theta_rad);
-  const auto in_map = [&](double x, double y) {
-    return Eigen::Vector2d(base_in_map.x_m + c * x - s * y, base_in_map.y_m + s * x + c * y);
-  };
-  const Eigen::Vector2d origin = in_map(scanner_in_base.x_m, scanner_in_base.y_m);
+  const core::Pose2 scanner_in_map = base_in_map * scanner_in_base;
+  const Eigen::Vector2d origin(scanner_in_map.x_m, scanner_in_map.y_m);
   int explained = 0;
   for (const Eigen::Vector2f& p : endpoints_) {
-    const Eigen::Vector2d end = in_map(p.x(), p.y());
-    if (field_.DistanceAt(end) <= options_.lost_explained_distance_m) {
-      ++explained;
-      continue;
-    }
-    const core::CellIndex end_cell = g.WorldToCell(end);
-    if (!g.Contains(end_cell) || map_.state(end_cell) != core::CellState::kFree) continue;
-    // Short: nothing mapped along the beam up to lost_explained_distance_m before its end.
-    const Eigen::Vector2d beam = end - origin;
-    const double length = beam.norm() - options_.lost_explained_distance_m;
-    const Eigen::Vector2d direction = beam.normalized();
-    const double step = 0.5 * g.resolution_m();
-    bool through = false;
-    for (double d = 0.0; d < length && !through; d += step) {
-      const core::CellIndex cell = g.WorldToCell(origin + direction * d);
-      through = g.Contains(cell) && map_.state(cell) == core::CellState::kOccupied;
-    }
-    explained += !through;
+    const Eigen::Vector2d end = base_in_map.Apply(p.cast<double>());
+    explained +=
+        field_.DistanceAt(end) <= options_.lost_explained_distance_m ||
+        EndsShortInFreeSpace(map_, field_, origin, end, options_.lost_explained_distance_m);
   }
   return static_cast<double>(explained) / endpoints_.size();
 }

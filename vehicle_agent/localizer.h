@@ -120,6 +120,9 @@ class Localizer {
   void TrackOdometry(const core::OdometrySample& odom);
   // The global search for `scan` and the restart around what it found.
   void StartFromGlobalSearch(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
+  // While the hypotheses are undecided and the last search may have left poses out: the scan
+  // searched for again each hypotheses.research_travel_m of driving, the poses found added.
+  void SearchAgainIfAmbiguous(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
   // Lost: the scans unexplained for lost_after_s; then searched for, and the particles moved
   // when the search finds a clearly better pose.
   void CheckLost(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
@@ -183,6 +186,10 @@ class Localizer {
   std::unique_ptr<GlobalSearch> global_search_;  // of map_version_, built when first needed
   int32_t global_search_version_ = -1;
   PoseHypotheses hypotheses_;  // active from a global search until one pose leads
+  // The last search returned max_candidates poses (others may fit as well), after this much
+  // of the hypotheses' travel.
+  bool search_full_ = false;
+  double searched_at_travel_m_ = 0.0;
   bool lost_ = false;
   double unexplained_since_s_ = std::numeric_limits<double>::quiet_NaN();  // NaN: explained
   double next_lost_search_s_ = 0.0;

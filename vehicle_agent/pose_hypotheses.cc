@@ -3,27 +3,46 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vehicle_agent/short_beam.h"
+
 namespace fleetmap::vehicle_agent {
 
 core::Status PoseHypothesesOptions::Validate() const {
-  const bool ok = decide_margin > 0 && drop_margin >= decide_margin && std::isfinite(drop_margin) &&
-                  min_scans >= 1 && min_travel_m >= 0 && fit_step_m > 0 && fit_step_rad > 0 &&
-                  fit_min_step_m > 0 && fit_min_step_m <= fit_step_m && same_m >= 0 &&
-                  same_rad >= 0;
+  const bool ok = decide_margin > 0 && max_loss_per_scan > 0 && drop_margin >= decide_margin &&
+                  std::isfinite(drop_margin) && min_scans >= 1 && min_travel_m >= 0 &&
+                  fit_step_m > 0 && fit_step_rad > 0 && fit_min_step_m > 0 &&
+                  fit_min_step_m <= fit_step_m && same_m >= 0 && same_rad >= 0 &&
+                  research_travel_m >= 0 && short_beam_as_m > 0 && short_beam_margin_m > 0 &&
+                  max_hypotheses >= 1 && fit_prior_sigma_m > 0 && fit_prior_sigma_rad > 0;
   if (!ok) {
     return core::InvalidArgument(
-        "pose hypotheses: decide_margin > 0, drop_margin >= decide_margin, min_scans >= 1, "
+        "pose hypotheses: decide_margin > 0, max_loss_per_scan > 0, drop_margin >= decide_margin, "
+        "min_scans >= 1, "
         "min_travel_m >= 0, "
-        "fit steps > 0 with fit_min_step_m <= fit_step_m, same_m and same_rad >= 0");
+        "fit steps > 0 with fit_min_step_m <= fit_step_m, same_m and same_rad >= 0, "
+        "research_travel_m >= 0, short_beam_as_m and short_beam_margin_m > 0, "
+        "max_hypotheses >= 1, fit_prior_sigma_m and fit_prior_sigma_rad > 0");
   }
   return core::OkStatus();
 }
 
 core::Pose2 PoseHypotheses::Fit(const core::Pose2& start, const LikelihoodField& field,
-                                const std::vector<Eigen::Vector2f>& endpoints,
-                                double& mean_log_p) const {
+                                const std::vector<Eigen::Vector2f>& endpoints) const {
+  if (endpoints.empty()) return start;
+  // The fit's objective: the mean log-likelihood per end point, less a Gaussian prior around
+  // where the odometry put the pose. Along an aisle or a corridor the scan alone cannot place
+  // the vehicle, and a fit without the prior slides a few cm per scan, whichever way a
+  // ragged wall happens to favour.
+  const double per_point = 1.0 / static_cast<double>(endpoints.size());
+  const auto objective = [&](const core::Pose2& p) {
+    const double dx = (p.x_m - start.x_m) / options_.fit_prior_sigma_m;
+    const double dy = (p.y_m - start.y_m) / options_.fit_prior_sigma_m;
+    const double dt =
+        core::NormalizeAngle(p.theta_rad - start.theta_rad) / options_.fit_prior_sigma_rad;
+    return field.LogLikelihood(endpoints, p) * per_point - 0.5 * (dx * dx + dy * dy + dt * dt);
+  };
   core::Pose2 pose = start;
-  double best = field.LogLikelihood(endpoints, pose);
+  double best = objective(pose);
   double step_m = options_.fit_step_m, step_rad = options_.fit_step_rad;
   // Each level moves at most a few steps: a fit follows the pose, it does not wander off.
   constexpr int kMovesPerLevel = 4;
@@ -36,7 +55,7 @@ core::Pose2 PoseHypotheses::Fit(const core::Pose2& start, const LikelihoodField&
                                    core::Pose2(0, 0, step_rad), core::Pose2(0, 0, -step_rad)}) {
         const core::Pose2 candidate(pose.x_m + d.x_m, pose.y_m + d.y_m,
                                     core::NormalizeAngle(pose.theta_rad + d.theta_rad));
-        const double score = field.LogLikelihood(endpoints, candidate);
+        const double score = objective(candidate);
         if (score > best) {
           best = score;
           chosen = candidate;
@@ -49,41 +68,71 @@ core::Pose2 PoseHypotheses::Fit(const core::Pose2& start, const LikelihoodField&
     step_m *= 0.5;
     step_rad *= 0.5;
   }
-  mean_log_p = endpoints.empty() ? 0.0 : best / static_cast<double>(endpoints.size());
   return pose;
 }
 
-void PoseHypotheses::Start(const std::vector<PoseHypothesis>& seeds, const LikelihoodField& field,
-                           const std::vector<Eigen::Vector2f>& endpoints_in_base) {
+double PoseHypotheses::Evidence(const core::Pose2& base_in_map, const HypothesisScan& scan) const {
+  if (scan.endpoints_in_base.empty()) return 0.0;
+  const double short_log_p = scan.field.LogProbabilityOfDistance(options_.short_beam_as_m);
+  const core::Pose2 scanner_in_map = base_in_map * scan.scanner_in_base;
+  const Eigen::Vector2d scanner(scanner_in_map.x_m, scanner_in_map.y_m);
+  double sum = 0.0;
+  for (const Eigen::Vector2f& p : scan.endpoints_in_base) {
+    const Eigen::Vector2d end = base_in_map.Apply(p.cast<double>());
+    const double log_p = scan.field.LogLikelihoodAt(end);
+    const bool forgiven =
+        log_p < short_log_p &&
+        EndsShortInFreeSpace(scan.map, scan.field, scanner, end, options_.short_beam_margin_m);
+    sum += forgiven ? short_log_p : log_p;
+  }
+  return sum / static_cast<double>(scan.endpoints_in_base.size());
+}
+
+void PoseHypotheses::Start(const std::vector<PoseHypothesis>& seeds, const HypothesisScan& scan) {
   hypotheses_.clear();
   scans_ = 1;
   travel_m_ = 0.0;
   for (const PoseHypothesis& seed : seeds) {
     PoseHypothesis h;
-    h.base_in_map = Fit(seed.base_in_map, field, endpoints_in_base, h.evidence);
-    h.evidence += seed.evidence;
+    h.base_in_map = Fit(seed.base_in_map, scan.field, scan.endpoints_in_base);
+    h.evidence = Evidence(h.base_in_map, scan) + seed.evidence;
     hypotheses_.push_back(h);
   }
   Prune();
 }
 
-void PoseHypotheses::Update(const core::Pose2& odometry_delta, const LikelihoodField& field,
-                            const std::vector<Eigen::Vector2f>& endpoints_in_base) {
-  if (hypotheses_.empty() || endpoints_in_base.empty()) return;
+void PoseHypotheses::Add(const std::vector<PoseHypothesis>& seeds, const HypothesisScan& scan) {
+  if (hypotheses_.empty()) return Start(seeds, scan);
+  const double level = best().evidence - options_.decide_margin;
+  for (const PoseHypothesis& seed : seeds) {
+    PoseHypothesis h;
+    h.base_in_map = Fit(seed.base_in_map, scan.field, scan.endpoints_in_base);
+    h.evidence = level + seed.evidence;
+    hypotheses_.push_back(h);
+  }
+  Prune();
+}
+
+void PoseHypotheses::Update(const core::Pose2& odometry_delta, const HypothesisScan& scan) {
+  if (hypotheses_.empty() || scan.endpoints_in_base.empty()) return;
   ++scans_;
   travel_m_ += std::hypot(odometry_delta.x_m, odometry_delta.y_m) +
                std::abs(odometry_delta.theta_rad) * 1.0;  // 1 m per rad
-  for (PoseHypothesis& h : hypotheses_) {
-    double mean_log_p = 0.0;
-    h.base_in_map = Fit(h.base_in_map * odometry_delta, field, endpoints_in_base, mean_log_p);
-    h.evidence += mean_log_p;
+  std::vector<double> scan_log_p(hypotheses_.size());
+  for (size_t i = 0; i < hypotheses_.size(); ++i) {
+    PoseHypothesis& h = hypotheses_[i];
+    h.base_in_map = Fit(h.base_in_map * odometry_delta, scan.field, scan.endpoints_in_base);
+    scan_log_p[i] = Evidence(h.base_in_map, scan);
   }
+  const double best_log_p = *std::max_element(scan_log_p.begin(), scan_log_p.end());
+  for (size_t i = 0; i < hypotheses_.size(); ++i)
+    hypotheses_[i].evidence += std::max(scan_log_p[i], best_log_p - options_.max_loss_per_scan);
   Prune();
 }
 
 // Best first; the far behind dropped; of two that met, the better kept.
 void PoseHypotheses::Prune() {
-  std::sort(
+  std::stable_sort(
       hypotheses_.begin(), hypotheses_.end(),
       [](const PoseHypothesis& a, const PoseHypothesis& b) { return a.evidence > b.evidence; });
   std::vector<PoseHypothesis> kept;
@@ -95,6 +144,7 @@ void PoseHypotheses::Prune() {
              std::abs(d.theta_rad) < options_.same_rad;
     });
     if (!met) kept.push_back(h);
+    if (static_cast<int>(kept.size()) == options_.max_hypotheses) break;
   }
   hypotheses_ = std::move(kept);
 }

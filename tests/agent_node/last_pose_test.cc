@@ -97,7 +97,7 @@ TEST(LastPoseTest, AVehicleThatMovedMeanwhileDoesNotUseItAndFindsItself) {
   AgentNodeOptions options = testing::RoomOptions(world, dir.path());
   options.pipeline.localizer.initial_pose_in_map = core::Pose2(3.0, 4.5, 2.0);
   Started second = Start(options, &out, world);
-  const auto truth = testing::DriveNode(world, *second.node, 13.0, {}, 9.0);
+  const auto truth = testing::DriveNode(world, *second.node, 18.0, {}, 9.0);
   EXPECT_EQ(testing::Counter(*second.node, "starts_from_last_pose"), 0);
   EXPECT_TRUE(Logged(second.log, "last pose not used: the odometry moved"));
   EXPECT_GT(FirstPoseError(out, truth), 2.0);  // the given pose
