@@ -132,9 +132,13 @@ void Localizer::RestartAround(const std::vector<GlobalCandidate>& found,
   ScanEndpoints(scan, scanner_in_base, options_.max_beams, options_.likelihood_field.max_range_m,
                 endpoints_);
   hypotheses_.Start(seeds, {map_, field_, endpoints_, scanner_in_base});
-  search_full_ = static_cast<int>(found.size()) >= options_.global_search.max_candidates;
+  search_full_ = Full(found);
   searched_at_travel_m_ = 0.0;
   FollowHypotheses();
+}
+
+bool Localizer::Full(const std::vector<GlobalCandidate>& found) const {
+  return static_cast<int>(found.size()) >= options_.global_search.max_candidates;
 }
 
 void Localizer::SearchAgainIfAmbiguous(const core::LaserScan& scan,
@@ -146,7 +150,7 @@ void Localizer::SearchAgainIfAmbiguous(const core::LaserScan& scan,
   ++counters_.global_searches;
   const std::vector<GlobalCandidate> found =
       SearchOfCurrentMap().Search(SearchPoints(scan, scanner_in_base));
-  search_full_ = static_cast<int>(found.size()) >= options_.global_search.max_candidates;
+  search_full_ = Full(found);
   searched_at_travel_m_ = hypotheses_.travel_m();
   std::vector<PoseHypothesis> seeds;
   for (const GlobalCandidate& c : found) seeds.push_back({c.base_in_map, 0.0});
@@ -226,8 +230,7 @@ void Localizer::CheckLost(const core::LaserScan& scan, const core::Pose2& scanne
   // at every wall: seen on the hall, 32 candidates all scoring 0.80). Otherwise look again
   // later, and less often while nothing better turns up.
   constexpr double kAlikeScore = 0.02;
-  const bool alike = static_cast<int>(found.size()) == options_.global_search.max_candidates &&
-                     found.front().score - found.back().score < kAlikeScore;
+  const bool alike = Full(found) && found.front().score - found.back().score < kAlikeScore;
   if (found.empty() || alike ||
       found.front().score < search.Score(points, CurrentPose()) + options_.relocalize_margin) {
     lost_search_period_s_ = std::min(2 * lost_search_period_s_, options_.lost_max_search_period_s);

@@ -123,6 +123,8 @@ class Localizer {
   // While the hypotheses are undecided and the last search may have left poses out: the scan
   // searched for again each hypotheses.research_travel_m of driving, the poses found added.
   void SearchAgainIfAmbiguous(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
+  // The search returned as many poses as it may: others may fit as well.
+  bool Full(const std::vector<GlobalCandidate>& found) const;
   // Lost: the scans unexplained for lost_after_s; then searched for, and the particles moved
   // when the search finds a clearly better pose.
   void CheckLost(const core::LaserScan& scan, const core::Pose2& scanner_in_base,

@@ -16,12 +16,11 @@ core::Status PoseHypothesesOptions::Validate() const {
                   max_hypotheses >= 1 && fit_prior_sigma_m > 0 && fit_prior_sigma_rad > 0;
   if (!ok) {
     return core::InvalidArgument(
-        "pose hypotheses: decide_margin > 0, max_loss_per_scan > 0, drop_margin >= decide_margin, "
-        "min_scans >= 1, "
-        "min_travel_m >= 0, "
-        "fit steps > 0 with fit_min_step_m <= fit_step_m, same_m and same_rad >= 0, "
-        "research_travel_m >= 0, short_beam_as_m and short_beam_margin_m > 0, "
-        "max_hypotheses >= 1, fit_prior_sigma_m and fit_prior_sigma_rad > 0");
+        "pose hypotheses: decide_margin > 0, max_loss_per_scan > 0, drop_margin >= "
+        "decide_margin, min_scans >= 1, min_travel_m >= 0, fit steps > 0 with fit_min_step_m "
+        "<= fit_step_m, same_m and same_rad >= 0, research_travel_m >= 0, short_beam_as_m and "
+        "short_beam_margin_m > 0, max_hypotheses >= 1, fit_prior_sigma_m and "
+        "fit_prior_sigma_rad > 0");
   }
   return core::OkStatus();
 }
