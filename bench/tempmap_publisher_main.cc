@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "auth/trailer.h"
 #include "core/version.h"
 #include "fleetmap/tempmap_tile_t.hpp"
 #include "lcmtypes/channels.h"
@@ -35,8 +36,14 @@ void OnSignal(int) { g_stop = 1; }
 
 using Map = std::vector<fleetmap::tempmap_tile_t>;  // every tile, by index
 
-// Every complete temporary map in the log, in the order its last tile arrived.
-std::vector<Map> ReadMaps(const std::string& path) {
+struct ReadCounts {
+  int64_t tiles = 0;      // messages on a temporary map's channel
+  int64_t undecoded = 0;  // of those, not a tempmap_tile_t
+};
+
+// Every complete temporary map in the log, in the order its last tile arrived. Agents append
+// an authentication trailer to every message (auth/trailer.h): it is split off first.
+std::vector<Map> ReadMaps(const std::string& path, ReadCounts* counts) {
   std::vector<Map> complete;
   using Key = std::pair<std::string, int32_t>;  // (vehicle, sequence)
   std::map<Key, std::map<int32_t, fleetmap::tempmap_tile_t>> partial;
@@ -45,10 +52,14 @@ std::vector<Map> ReadMaps(const std::string& path) {
   if (!log.good()) return complete;
   while (const lcm::LogEvent* e = log.readNextEvent()) {
     if (!fleetmap::lcmtypes::IsTempMapTileChannel(e->channel)) continue;
+    ++counts->tiles;
+    const auto size = static_cast<int>(fleetmap::auth::PayloadSize(e->data, e->datalen));
     fleetmap::tempmap_tile_t t;
-    if (t.decode(e->data, 0, static_cast<int>(e->datalen)) != static_cast<int>(e->datalen) ||
-        t.tile_count <= 0 || t.tile_index < 0 || t.tile_index >= t.tile_count)
+    if (t.decode(e->data, 0, size) != size || t.tile_count <= 0 || t.tile_index < 0 ||
+        t.tile_index >= t.tile_count) {
+      ++counts->undecoded;
       continue;
+    }
     const Key key{t.vehicle_id, t.tempmap_seq};
     if (taken.count(key) != 0) continue;
     auto& tiles = partial[key];
@@ -96,10 +107,14 @@ int main(int argc, char** argv) {
   }
   if (log_path.empty() || url.empty() || vehicles < 1 || !(period_s > 0) || !(duration_s > 0))
     return std::fputs(kUsage, stderr), 2;
-  const std::vector<Map> maps = ReadMaps(log_path);
+  ReadCounts counts;
+  const std::vector<Map> maps = ReadMaps(log_path, &counts);
   if (maps.empty())
-    return std::fprintf(stderr, "tempmap-publisher: %s: no complete temporary map\n",
-                        log_path.c_str()),
+    return std::fprintf(stderr,
+                        "tempmap-publisher: %s: no complete temporary map (%lld tile messages, "
+                        "%lld of them not a tempmap_tile_t)\n",
+                        log_path.c_str(), static_cast<long long>(counts.tiles),
+                        static_cast<long long>(counts.undecoded)),
            1;
   lcm::LCM lcm(url);
   if (!lcm.good()) return std::fprintf(stderr, "tempmap-publisher: %s: no LCM\n", url.c_str()), 1;
