@@ -8,7 +8,6 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <set>
@@ -18,18 +17,11 @@
 #include <vector>
 
 #include "auth/trailer.h"
-#include "core/version.h"
+#include "core/command_line.h"
 #include "fleetmap/tempmap_tile_t.hpp"
 #include "lcmtypes/channels.h"
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: fleetmap-bench-tempmap-publisher --log UPLINK.lcmlog --url URL [options]\n"
-    "  --vehicles N    simulated vehicles                         [10]\n"
-    "  --period S      each vehicle closes a map every S seconds  [10]\n"
-    "  --duration S    stop after S seconds                       [60]\n"
-    "Prints one line at the end: maps and tiles sent.\n";
 
 volatile std::sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
@@ -83,30 +75,28 @@ int64_t NowUtime() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-bench-tempmap-publisher")) return 0;
+  CLI::App app(
+      "N simulated vehicles, each closing a temporary map every PERIOD seconds: the complete\n"
+      "temporary maps of a recorded uplink log, renamed, sent on TEMPMAP_benchNNN.\n"
+      "Prints one line at the end: maps and tiles sent.",
+      "fleetmap-bench-tempmap-publisher");
+  fleetmap::core::AddVersionFlag(app);
   std::string log_path, url;
   int vehicles = 10;
   double period_s = 10, duration_s = 60;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help") return std::fputs(kUsage, stdout), 0;
-    if (i + 1 >= argc) return std::fputs(kUsage, stderr), 2;
-    const std::string v = argv[++i];
-    if (arg == "--log")
-      log_path = v;
-    else if (arg == "--url")
-      url = v;
-    else if (arg == "--vehicles")
-      vehicles = std::atoi(v.c_str());
-    else if (arg == "--period")
-      period_s = std::atof(v.c_str());
-    else if (arg == "--duration")
-      duration_s = std::atof(v.c_str());
-    else
-      return std::fputs(kUsage, stderr), 2;
-  }
-  if (log_path.empty() || url.empty() || vehicles < 1 || !(period_s > 0) || !(duration_s > 0))
-    return std::fputs(kUsage, stderr), 2;
+  app.add_option("--log", log_path, "the uplink LCM log of a fleet run")->required();
+  app.add_option("--url", url, "the LCM URL to send on")->required();
+  app.add_option("--vehicles", vehicles, "simulated vehicles")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--period", period_s, "each vehicle closes a map every this many seconds")
+      ->check(fleetmap::core::Finite() & CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--duration", duration_s, "stop after this many seconds")
+      ->check(fleetmap::core::Finite() & CLI::PositiveNumber)
+      ->capture_default_str();
+  if (const auto exit_status = fleetmap::core::ParseCommandLine(app, argc, argv))
+    return *exit_status;
   ReadCounts counts;
   const std::vector<Map> maps = ReadMaps(log_path, &counts);
   if (maps.empty())

@@ -11,7 +11,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   iproute2  # ip route for LCM multicast on loopback
   nlohmann-json3-dev  # SICK recordings (.pcapng.json), the world suite's reports
-  libcli11-dev  # command lines of the programs (tools/worldgen: fleetmap-worldgen)
+  libcli11-dev  # every program's command line (core/command_line.h)
   qemu-system-x86 linux-image-amd64 busybox-static can-utils cpio  # SocketCAN tests in a VM
   clang-format  # scripts/check_format.sh (ctest format_test)
   clang-14 libclang-rt-14-dev  # libFuzzer targets (scripts/fuzz.sh, docs/fuzzing.md)

@@ -210,13 +210,7 @@ int WriteResults(const Args& args, const sim::World& world, const sim::Simulator
                  const eval::RunRecord& run, const eval::EvalReport& report,
                  const std::string& name, const std::string& out,
                  const std::vector<std::pair<std::string, std::string>>& extra_json) {
-  std::string json = eval::ReportJson(report);
-  if (!extra_json.empty()) {  // the report's flat object, extended by more keys
-    json.erase(json.rfind('}'));
-    json.erase(json.find_last_not_of(" \n") + 1);
-    for (const auto& [key, value] : extra_json) json += ",\n  \"" + key + "\": " + value;
-    json += "\n}\n";
-  }
+  const std::string json = eval::ReportJson(report, extra_json);
   for (const core::Status& s :
        {core::WriteFileAtomically(out + "/report.json", json),
         core::WriteFileAtomically(out + "/report.md", eval::ReportMarkdown(report)),

@@ -2,12 +2,11 @@
 // simulator's truth (tools/eval/global_localization.h): vehicles switched on without a pose
 // at start poses spread over their routes (loc.global.*), and vehicles kidnapped there, sure
 // of a pose metres off (loc.kidnapped.*).
-#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "core/version.h"
+#include "core/command_line.h"
 #include "tools/eval/global_localization.h"
 #include "tools/sim/world.h"
 
@@ -52,7 +51,7 @@ int Run(int argc, char** argv) {
       "loc.kidnapped.time_to_recover_s (and .max), loc.kidnapped.starts.\n"
       "Exit status: 0 measured, 1 the world cannot be loaded or measured, 2 usage errors.",
       "fleetmap-locate-eval");
-  app.set_version_flag("--version", std::string("fleetmap-locate-eval ") + core::kFleetmapVersion);
+  core::AddVersionFlag(app);
   std::string scenario, map;
   eval::GlobalLocalizationOptions o;
   bool per_start = false;
@@ -76,14 +75,7 @@ int Run(int argc, char** argv) {
   app.add_option("--kidnap-rad", o.kidnap_rad, "kidnapped: heading between belief and truth")
       ->capture_default_str();
   app.add_flag("--per-start", per_start, "also one line per start on stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "fleetmap-locate-eval: %s (see --help)\n", e.what());
-    return 2;
-  }
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   if (!(recover_s > 0)) {
     std::fprintf(stderr, "fleetmap-locate-eval: --recover-s must be > 0\n");
     return 2;

@@ -14,28 +14,12 @@
 #include <cstring>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 
-#include "core/version.h"
+#include "core/command_line.h"
 
 namespace {
-
-constexpr const char* kUsage = R"(usage: fleetmap-record [options] FILE.lcmlog
-
-Records every message of one LCM group whose channel matches REGEX into FILE.lcmlog (the
-format of lcm-logger, readable by lcm-logplayer, fleetmap-eval and fleetmap-aggregator
---replay). Stop it with SIGINT or SIGTERM; it then closes the file and prints a summary.
-
-options:
-  --lcm-url URL      the group to record                            [LCM's default]
-  --channel REGEX    channels to record                                       [.*]
-  --queue N          messages LCM may hold for the recorder while it writes [100000]
-  --force            overwrite FILE if it exists
-  --quiet            no progress lines (every 10 s otherwise)
-  --version          print the version
-  -h, --help         this text
-Exit status: 0 after a clean stop, 1 on a write error (disk full...), 2 on usage errors.
-)";
 
 volatile std::sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
@@ -49,40 +33,26 @@ struct Options {
   std::string path;
 };
 
-// Parses argv into `o`; returns an error text, empty on success.
-std::string ParseArgs(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc) return false;
-      out = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--lcm-url") {
-      if (!value(o.url)) return "--lcm-url needs a URL";
-    } else if (a == "--channel") {
-      if (!value(o.channel)) return "--channel needs a regex";
-    } else if (a == "--queue") {
-      if (!value(v)) return "--queue needs a number";
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (*end != '\0' || n < 1 || n > 10000000) return "--queue takes 1..10000000";
-      o.queue_messages = static_cast<int>(n);
-    } else if (a == "--force" || a == "-f") {
-      o.force = true;
-    } else if (a == "--quiet" || a == "-q") {
-      o.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      return "unknown option '" + a + "'";
-    } else if (o.path.empty()) {
-      o.path = a;
-    } else {
-      return "one output file only";
-    }
-  }
-  if (o.path.empty()) return "no output file";
-  return "";
+// Reads the command line into `o`. No value: go on; otherwise the exit status.
+std::optional<int> ParseArgs(int argc, char** argv, Options& o) {
+  CLI::App app(
+      "Records every message of one LCM group whose channel matches REGEX into FILE.lcmlog\n"
+      "(the format of lcm-logger, readable by lcm-logplayer, fleetmap-eval and\n"
+      "fleetmap-aggregator --replay). Stop it with SIGINT or SIGTERM; it then closes the file\n"
+      "and prints a summary.\n"
+      "Exit status: 0 after a clean stop, 1 on a write error (disk full...), 2 on usage errors.",
+      "fleetmap-record");
+  fleetmap::core::AddVersionFlag(app);
+  app.add_option("--lcm-url", o.url, "the group to record (default: LCM's)");
+  app.add_option("--channel", o.channel, "channels to record (a regex)")->capture_default_str();
+  app.add_option("--queue", o.queue_messages,
+                 "messages LCM may hold for the recorder while it writes")
+      ->check(CLI::Range(1, 10000000))
+      ->capture_default_str();
+  app.add_flag("-f,--force", o.force, "overwrite FILE if it exists");
+  app.add_flag("-q,--quiet", o.quiet, "no progress lines (every 10 s otherwise)");
+  app.add_option("FILE.lcmlog", o.path, "the log to write")->required();
+  return fleetmap::core::ParseCommandLine(app, argc, argv);
 }
 
 double MonotonicSeconds() {
@@ -137,18 +107,8 @@ class Recorder {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-record")) return 0;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-  }
   Options o;
-  if (const std::string err = ParseArgs(argc, argv, o); !err.empty()) {
-    std::fprintf(stderr, "fleetmap-record: %s (see --help)\n", err.c_str());
-    return 2;
-  }
+  if (const auto exit_status = ParseArgs(argc, argv, o)) return *exit_status;
   struct stat st {};
   if (!o.force && stat(o.path.c_str(), &st) == 0) {
     std::fprintf(stderr, "fleetmap-record: %s exists (--force overwrites it)\n", o.path.c_str());

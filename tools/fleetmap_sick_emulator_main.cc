@@ -8,12 +8,11 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <thread>
-#include <type_traits>
 
-#include "core/number_text.h"
-#include "core/version.h"
+#include "core/command_line.h"
 #include "tools/sickemu/s300_output.h"
 #include "tools/sickemu/scan_source.h"
 #include "tools/sickemu/scanner_emulator.h"
@@ -22,20 +21,6 @@ namespace {
 
 std::atomic<bool> g_stop{false};  // set by SIGINT/SIGTERM: the process edge only
 
-constexpr const char* kUsage =
-    R"(usage: fleetmap-sick-emulator (--scenario S.yaml [--vehicle N] | --replay FILE [--loop])
-       [--port 2112] [--bind 127.0.0.1] [--protocol cola-b|cola-a] [--speed 1.0]
-       [--require-login] [--spin-up 1.0] [--measuring] [--s300-out PATH [--count N]]
-  --scenario   scans of vehicle N (default 0) of a simulated scenario
-  --replay     scans of a recording: .pcapng, .pcapng.json or pysicktim .dat
-  --spin-up    seconds from sMN LMCstartmeas to the first scan, as a real device spins up
-  --measuring  measure from the start (no LMCstartmeas needed; Run still ends a login)
-  --s300-out   instead of TCP, write N (default 100) S300 telegrams to PATH (file or tty)
-Like a real scanner it sends scans only after sMN LMCstartmeas (and sMN Run after a login),
-and serves one client at a time (a second connection is closed at once), until
-SIGINT/SIGTERM.
-)";
-
 struct Args {
   std::string scenario, replay, s300_out;
   size_t vehicle = 0, count = 100;
@@ -43,55 +28,56 @@ struct Args {
   fleetmap::sickemu::EmulatorOptions emulator;
 };
 
-// False on a usage error, after saying which flag was wrong when it was a value.
-bool Parse(int argc, char** argv, Args& a) {
-  using fleetmap::core::ParseCount;
-  using fleetmap::core::ParseNumber;
-  bool values_ok = true;
-  auto take = [&](const auto& parsed, auto& into) {
-    if (parsed.ok()) {
-      into = static_cast<std::remove_reference_t<decltype(into)>>(*parsed);
-      return;
-    }
-    std::fprintf(stderr, "fleetmap-sick-emulator: %s\n", parsed.status().message().c_str());
-    values_ok = false;
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-    if (k == "--scenario")
-      a.scenario = value();
-    else if (k == "--replay")
-      a.replay = value();
-    else if (k == "--vehicle")
-      take(ParseCount(value(), k, 1000), a.vehicle);
-    else if (k == "--loop")
-      a.loop = true;
-    else if (k == "--port")
-      take(ParseCount(value(), k, 65535), a.emulator.port);
-    else if (k == "--bind")
-      a.emulator.bind_address = value();
-    else if (k == "--speed")
-      take(ParseNumber(value(), k), a.emulator.speed_factor);
-    else if (k == "--require-login")
-      a.emulator.require_login = true;
-    else if (k == "--spin-up")
-      take(ParseNumber(value(), k), a.emulator.spin_up_s);
-    else if (k == "--measuring")
-      a.emulator.measuring_at_power_up = true;
-    else if (k == "--s300-out")
-      a.s300_out = value();
-    else if (k == "--count")
-      take(ParseCount(value(), k, 100000000), a.count);
-    else if (k == "--protocol") {
-      auto p = fleetmap::drivers::sick::ParseColaProtocol(value());
-      if (!p.ok()) return std::fprintf(stderr, "%s\n", p.status().ToString().c_str()), false;
-      a.emulator.protocol = *p;
-    } else {
-      return false;
-    }
+// Reads the command line into `a`. No value: go on; otherwise the exit status.
+std::optional<int> Parse(int argc, char** argv, Args& a) {
+  CLI::App app(
+      "A SICK scanner on a TCP port (CoLa-A or CoLa-B), fed by the simulator or by replaying\n"
+      "a recording, so the driver runs end to end without hardware. Like a real scanner it\n"
+      "sends scans only after sMN LMCstartmeas (and sMN Run after a login), and serves one\n"
+      "client at a time (a second connection is closed at once), until SIGINT/SIGTERM.\n"
+      "Exit status: 0 after a stop, 1 the source or the port failed, 2 usage errors.",
+      "fleetmap-sick-emulator");
+  fleetmap::core::AddVersionFlag(app);
+  auto* scenario =
+      app.add_option("--scenario", a.scenario, "scans of a vehicle of a simulated scenario");
+  auto* replay = app.add_option("--replay", a.replay,
+                                "scans of a recording: .pcapng, .pcapng.json or pysicktim .dat");
+  scenario->excludes(replay);
+  app.add_option("--vehicle", a.vehicle, "the scenario's vehicle")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  app.add_flag("--loop", a.loop, "replay the recording again and again");
+  app.add_option("--port", a.emulator.port, "TCP port (0: any free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  app.add_option("--bind", a.emulator.bind_address, "address to listen on")->capture_default_str();
+  std::string protocol = fleetmap::drivers::sick::ColaProtocolName(a.emulator.protocol);
+  app.add_option("--protocol", protocol, "cola-b or cola-a")->capture_default_str();
+  app.add_option("--speed", a.emulator.speed_factor, "scans this many times faster than real")
+      ->check(fleetmap::core::Finite())
+      ->capture_default_str();
+  app.add_flag("--require-login", a.emulator.require_login, "refuse requests before a login");
+  app.add_option("--spin-up", a.emulator.spin_up_s,
+                 "seconds from sMN LMCstartmeas to the first scan, as a real device spins up")
+      ->check(fleetmap::core::Finite())
+      ->capture_default_str();
+  app.add_flag("--measuring", a.emulator.measuring_at_power_up,
+               "measure from the start (no LMCstartmeas needed; Run still ends a login)");
+  app.add_option("--s300-out", a.s300_out,
+                 "instead of TCP, write --count S300 telegrams to this file or tty");
+  app.add_option("--count", a.count, "S300 telegrams to write")
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
+  if (const auto exit_status = fleetmap::core::ParseCommandLine(app, argc, argv))
+    return exit_status;
+  auto p = fleetmap::drivers::sick::ParseColaProtocol(protocol);
+  if (!p.ok()) return std::fprintf(stderr, "%s\n", p.status().ToString().c_str()), 2;
+  a.emulator.protocol = *p;
+  if (a.scenario.empty() == a.replay.empty()) {
+    std::fprintf(stderr, "fleetmap-sick-emulator: one of --scenario and --replay (see --help)\n");
+    return 2;
   }
-  return values_ok && a.scenario.empty() != a.replay.empty();
+  return std::nullopt;
 }
 
 fleetmap::core::Result<std::unique_ptr<fleetmap::sickemu::ScanSource>> MakeSource(const Args& a) {
@@ -121,17 +107,8 @@ int WriteS300(const Args& a, fleetmap::sickemu::ScanSource& source) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-sick-emulator")) return 0;
-  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h"))
-    return std::fputs(kUsage, stdout), 0;
   Args args;
-  bool ok = false;
-  try {
-    ok = Parse(argc, argv, args);
-  } catch (const std::exception&) {
-    ok = false;  // a number that does not parse
-  }
-  if (!ok) return std::fputs(kUsage, stderr), 2;
+  if (const auto exit_status = Parse(argc, argv, args)) return *exit_status;
   auto source = MakeSource(args);
   if (!source.ok()) return std::fprintf(stderr, "%s\n", source.status().ToString().c_str()), 1;
   if (!args.s300_out.empty()) return WriteS300(args, **source);

@@ -3,52 +3,34 @@
 #include <cstdio>
 #include <string>
 
-#include "core/number_text.h"
-#include "core/version.h"
+#include "core/command_line.h"
 #include "tools/simcan/sim_can_log.h"
 
-namespace {
-
-constexpr const char* kUsage = R"(usage: fleetmap-sim-candump --scenario S.yaml --out LOG
-       [--vehicle N] [--duration S] [--can CAN.yaml] [--interface can0]
-  --can   drive-node mapping (docs/drivers.md); defaults: SYNC 0x80, nodes 1 and 2, TPDO1
-Replay: canplayer -I LOG vcan0=can0
-)";
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-sim-candump")) return 0;
-  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h"))
-    return std::fputs(kUsage, stdout), 0;
   using namespace fleetmap;
+  CLI::App app(
+      "Writes the odometry of a simulated vehicle as the CANopen frames of its two drive\n"
+      "nodes, in candump log format. Replay: canplayer -I LOG vcan0=can0\n"
+      "Exit status: 0 written, 1 the scenario, the CAN mapping or the log failed, 2 usage "
+      "errors.",
+      "fleetmap-sim-candump");
+  core::AddVersionFlag(app);
   std::string scenario, out, can_yaml;
   simcan::SimCanLogOptions options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    const std::string v = i + 1 < argc ? argv[i + 1] : "";
-    if (k == "--scenario") {
-      scenario = v;
-    } else if (k == "--out") {
-      out = v;
-    } else if (k == "--vehicle") {
-      auto n = core::ParseCount(v, k, 1000);
-      if (!n.ok()) return std::fprintf(stderr, "%s\n", n.status().message().c_str()), 2;
-      options.vehicle = *n;
-    } else if (k == "--duration") {
-      auto d = core::ParseNumber(v, k);
-      if (!d.ok()) return std::fprintf(stderr, "%s\n", d.status().message().c_str()), 2;
-      options.duration_s = *d;
-    } else if (k == "--can") {
-      can_yaml = v;
-    } else if (k == "--interface") {
-      options.interface = v;
-    } else {
-      return std::fputs(kUsage, stderr), 2;
-    }
-    ++i;
-  }
-  if (scenario.empty() || out.empty()) return std::fputs(kUsage, stderr), 2;
+  app.add_option("--scenario", scenario, "the scenario (docs/scenario.md)")->required();
+  app.add_option("--out", out, "the candump log to write")->required();
+  app.add_option("--vehicle", options.vehicle, "index of the scenario's vehicle")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  app.add_option("--duration", options.duration_s, "simulated seconds (0: the whole scenario)")
+      ->check(core::Finite())
+      ->capture_default_str();
+  app.add_option("--can", can_yaml,
+                 "drive-node mapping (docs/drivers.md); default: SYNC 0x80, nodes 1 and 2, "
+                 "TPDO1");
+  app.add_option("--interface", options.interface, "the interface written into every record")
+      ->capture_default_str();
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   if (!can_yaml.empty()) {
     auto can = drivers::can::LoadDiffDriveCanOptions(can_yaml);
     if (!can.ok()) return std::fprintf(stderr, "%s\n", can.status().ToString().c_str()), 1;

@@ -1,7 +1,6 @@
 // fleetmap-suite: the method judged across buildings. See --help and docs/world_suite.md.
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,8 +10,8 @@
 #include <string>
 #include <thread>
 
+#include "core/command_line.h"
 #include "core/file_io.h"
-#include "core/version.h"
 #include "tools/suite/job_pool.h"
 #include "tools/suite/suite_figures.h"
 #include "tools/suite/suite_plan.h"
@@ -204,7 +203,7 @@ int Run(int argc, char** argv) {
       "Exit status: 0 on success, 1 when no world could be scored or an output cannot be\n"
       "written, 2 on usage errors, 3 when a --require does not hold.",
       "fleetmap-suite");
-  app.set_version_flag("--version", std::string("fleetmap-suite ") + core::kFleetmapVersion);
+  core::AddVersionFlag(app);
   Options o;
   const char* data = std::getenv("FLEETMAP_DATA_DIR");
   o.data_dir = data && *data ? data : "../shared/data";
@@ -232,14 +231,7 @@ int Run(int argc, char** argv) {
                  "evaluation uses (default: the built-in defaults)")
       ->check(CLI::ExistingFile);
   app.add_option("--bin-dir", o.bin_dir, "the folder of fleetmap-eval")->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "fleetmap-suite: %s (see --help)\n", e.what());
-    return 2;
-  }
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   for (const std::string& p : o.pipelines)
     if (p != "agents" && p != "truthmaps") {
       std::fprintf(stderr, "fleetmap-suite: --pipelines: '%s' is not agents or truthmaps\n",

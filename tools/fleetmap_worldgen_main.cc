@@ -1,14 +1,13 @@
 // fleetmap-worldgen: a static map of a generated building (map_server YAML + PGM and a PNG).
 // See --help and docs/worldgen.md.
-#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "core/codecs/map_render.h"
+#include "core/command_line.h"
 #include "core/map_io.h"
-#include "core/version.h"
 #include "tools/sim/scenario.h"
 #include "tools/worldgen/scenario_writer.h"
 #include "tools/worldgen/world_generator.h"
@@ -54,7 +53,7 @@ int Run(int argc, char** argv) {
       "beside them. The same options and seed give the same map, cell for cell.\n"
       "Exit status: 0 on success, 1 when the map cannot be made or written, 2 on usage errors.",
       "fleetmap-worldgen");
-  app.set_version_flag("--version", std::string("fleetmap-worldgen ") + core::kFleetmapVersion);
+  core::AddVersionFlag(app);
   std::string style_name = "racked_warehouse", out, scenario_for;
   worldgen::WorldOptions o;
   worldgen::ScenarioOptions so;
@@ -93,14 +92,7 @@ int Run(int argc, char** argv) {
   app.add_option("OUT.yaml", out,
                  "the map to write (image OUT.pgm, picture OUT.png, scenario "
                  "OUT_scenario.yaml); with --scenario-for, the scenario");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "fleetmap-worldgen: %s (see --help)\n", e.what());
-    return 2;
-  }
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   so.fit_to_floor = !exact_fleet;
   if (list) {
     for (worldgen::BuildingStyle s : worldgen::AllBuildingStyles()) {

@@ -52,7 +52,7 @@ rc=$?
 [[ $rc != 0 && $out == *"aggregator.merge.confirm_gap_s: unknown key"* ]] || fail "fleetmap-eval took an aggregator configuration with an unknown key (exit $rc): $out"
 out=$("$bin/fleetmap-sick-emulator" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --s300-out "$work/s300.bin" --count -5 2>&1)
 rc=$?
-[[ $rc == 2 && $out == *"--count: not a whole number"* && ! -e $work/s300.bin ]] || fail "sick-emulator took --count -5 (exit $rc): $out"
+[[ $rc == 2 && $out == *"--count"* && ! -e $work/s300.bin ]] || fail "sick-emulator took --count -5 (exit $rc): $out"
 pass "options out of range refused"
 
 # 2. Configure: the static map, the fleet key.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "tests/sim/sim_test_util.h"
 #include "tools/eval/pipeline.h"
@@ -220,6 +221,20 @@ TEST_F(EvaluatorTest, ReportJsonHasTheStableKeys) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
   }
   EXPECT_NE(json.find("\"detection.latency_s.median\": null"), std::string::npos);
+}
+
+// Names come from outside (a scenario file, channel names in a log): report.json stays JSON
+// whatever they hold, and the extra keys follow the report's own.
+TEST_F(EvaluatorTest, ReportJsonIsJsonWhateverTheNamesHold) {
+  EvalReport r = Score(run_);
+  r.scenario = "hall \"B\" \\ east\n";
+  const nlohmann::ordered_json json = nlohmann::ordered_json::parse(
+      ReportJson(r, {{"fleet.final_version", "12"}, {"fleet.bytes_per_s.TEMPMAP_\"x\"", "null"}}));
+  EXPECT_EQ(json["scenario"], r.scenario);
+  EXPECT_EQ(json["fleet.final_version"], 12);
+  EXPECT_TRUE(json["fleet.bytes_per_s.TEMPMAP_\"x\""].is_null());
+  EXPECT_EQ(json.begin().key(), "scenario");
+  EXPECT_EQ((--json.end()).key(), "fleet.bytes_per_s.TEMPMAP_\"x\"");
 }
 
 // A run in which nothing changed has no changed-cell score: F1, precision and recall are

@@ -128,7 +128,7 @@ TEST_F(RecordTest, KeepsAnExistingLogUnlessForced) {
 
 TEST_F(RecordTest, HelpAndUsageErrors) {
   EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY, "--help"}, dir_ / "o1", dir_ / "e1", 30), 0);
-  EXPECT_NE(ReadText(dir_ / "o1").find("usage: fleetmap-record"), std::string::npos);
+  EXPECT_NE(ReadText(dir_ / "o1").find("Usage: fleetmap-record"), std::string::npos);
   EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY}, dir_ / "o2", dir_ / "e2", 30), 2);
   EXPECT_EQ(RunToExit({FLEETMAP_RECORD_BINARY, "--queue", "0", "x"}, dir_ / "o3", dir_ / "e3", 30),
             2);

@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace fleetmap::eval {
@@ -105,22 +107,34 @@ void ScoreLocalization(const std::vector<PoseSample>& poses, EvalReport& r) {
   r.localization_error_deg = Summarize(rot);
 }
 
-std::string Number(double v) {
-  if (!std::isfinite(v)) return "null";
+// A figure as report.json holds it: 6 significant digits (as the figure lines print it),
+// null for NaN or infinity (a figure computed over nothing).
+nlohmann::ordered_json Number(double v) {
+  if (!std::isfinite(v)) return nullptr;
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.6g", v);
-  return buf;
+  return std::strtod(buf, nullptr);
 }
 
 // A count the run may not record: null then.
-std::string Count(const std::optional<int64_t>& v) { return v ? std::to_string(*v) : "null"; }
+nlohmann::ordered_json Count(const std::optional<int64_t>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
 
-void AddStats(std::vector<std::pair<std::string, std::string>>& kv, const std::string& key,
-              const SummaryStats& s) {
-  kv.emplace_back(key + ".count", std::to_string(s.count));
-  kv.emplace_back(key + ".median", Number(s.median));
-  kv.emplace_back(key + ".p95", Number(s.p95));
-  kv.emplace_back(key + ".max", Number(s.max));
+void AddStats(nlohmann::ordered_json& kv, const std::string& key, const SummaryStats& s) {
+  kv[key + ".count"] = s.count;
+  kv[key + ".median"] = Number(s.median);
+  kv[key + ".p95"] = Number(s.p95);
+  kv[key + ".max"] = Number(s.max);
+}
+
+// The scores of one kind of change (added or removed cells).
+void AddKindScores(nlohmann::ordered_json& kv, const std::string& key, int64_t true_cells,
+                   int64_t predicted_cells, double precision, double recall) {
+  kv[key + ".true"] = true_cells;
+  kv[key + ".predicted"] = predicted_cells;
+  kv[key + ".precision"] = Number(precision);
+  kv[key + ".recall"] = Number(recall);
 }
 
 }  // namespace
@@ -143,48 +157,41 @@ EvalReport Evaluate(const sim::World& world, const sim::ObservationLog& observat
   return r;
 }
 
-std::string ReportJson(const EvalReport& r) {
-  std::vector<std::pair<std::string, std::string>> kv;
-  kv.emplace_back("scenario", "\"" + r.scenario + "\"");
-  kv.emplace_back("pipeline", "\"" + r.pipeline + "\"");
+std::string ReportJson(const EvalReport& r,
+                       const std::vector<std::pair<std::string, std::string>>& extra) {
+  nlohmann::ordered_json kv;
+  kv["scenario"] = r.scenario;
+  kv["pipeline"] = r.pipeline;
   const ChangeScores& c = r.changes;
-  kv.emplace_back("changed_cells.precision", Number(c.precision));
-  kv.emplace_back("changed_cells.recall", Number(c.recall));
-  kv.emplace_back("changed_cells.f1", Number(c.f1));
-  kv.emplace_back("changed_cells.added.true", std::to_string(c.true_added));
-  kv.emplace_back("changed_cells.added.predicted", std::to_string(c.predicted_added));
-  kv.emplace_back("changed_cells.added.precision", Number(c.added_precision));
-  kv.emplace_back("changed_cells.added.recall", Number(c.added_recall));
-  kv.emplace_back("changed_cells.removed.true", std::to_string(c.true_removed));
-  kv.emplace_back("changed_cells.removed.predicted", std::to_string(c.predicted_removed));
-  kv.emplace_back("changed_cells.removed.precision", Number(c.removed_precision));
-  kv.emplace_back("changed_cells.removed.recall", Number(c.removed_recall));
-  kv.emplace_back("static_cells_erased", std::to_string(c.static_cells_erased));
-  kv.emplace_back("actor_cells_mapped", std::to_string(c.actor_cells_mapped));
-  kv.emplace_back("seen_free.drops", Count(c.seen_free_drops));
-  kv.emplace_back("seen_free.drops_near_added", Count(c.seen_free_drops_near_added));
-  kv.emplace_back("seen_free.added_missed", Count(c.added_missed_seen_free));
-  kv.emplace_back("merges.accepted", std::to_string(r.merges_accepted));
-  kv.emplace_back("merges.rejected", std::to_string(r.merges_rejected));
+  kv["changed_cells.precision"] = Number(c.precision);
+  kv["changed_cells.recall"] = Number(c.recall);
+  kv["changed_cells.f1"] = Number(c.f1);
+  AddKindScores(kv, "changed_cells.added", c.true_added, c.predicted_added, c.added_precision,
+                c.added_recall);
+  AddKindScores(kv, "changed_cells.removed", c.true_removed, c.predicted_removed,
+                c.removed_precision, c.removed_recall);
+  kv["static_cells_erased"] = c.static_cells_erased;
+  kv["actor_cells_mapped"] = c.actor_cells_mapped;
+  kv["seen_free.drops"] = Count(c.seen_free_drops);
+  kv["seen_free.drops_near_added"] = Count(c.seen_free_drops_near_added);
+  kv["seen_free.added_missed"] = Count(c.added_missed_seen_free);
+  kv["merges.accepted"] = r.merges_accepted;
+  kv["merges.rejected"] = r.merges_rejected;
   AddStats(kv, "alignment.translation_m", r.align_translation_m);
   AddStats(kv, "alignment.translation_cells", r.align_translation_cells);
   AddStats(kv, "alignment.rotation_deg", r.align_rotation_deg);
   AddStats(kv, "alignment.anchor_translation_cells", r.anchor_translation_cells);
   AddStats(kv, "tempmap.drift_m", r.tempmap_drift_m);
   AddStats(kv, "tempmap.drift_deg", r.tempmap_drift_deg);
-  kv.emplace_back("detection.changes_seen", std::to_string(r.changes_seen));
-  kv.emplace_back("detection.changes_detected", std::to_string(r.changes_detected));
+  kv["detection.changes_seen"] = r.changes_seen;
+  kv["detection.changes_detected"] = r.changes_detected;
   AddStats(kv, "detection.latency_s", r.detection_latency_s);
-  kv.emplace_back("detection.false_triggers", std::to_string(r.false_triggers));
+  kv["detection.false_triggers"] = r.false_triggers;
   AddStats(kv, "merge.latency_s", r.merge_latency_s);
   AddStats(kv, "localization.error_m", r.localization_error_m);
   AddStats(kv, "localization.error_deg", r.localization_error_deg);
-  std::ostringstream out;
-  out << "{\n";
-  for (size_t i = 0; i < kv.size(); ++i)
-    out << "  \"" << kv[i].first << "\": " << kv[i].second << (i + 1 < kv.size() ? ",\n" : "\n");
-  out << "}\n";
-  return out.str();
+  for (const auto& [key, value] : extra) kv[key] = nlohmann::ordered_json::parse(value);
+  return kv.dump(2) + "\n";
 }
 
 std::string LineTable(const EvalReport& r) {

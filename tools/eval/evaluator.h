@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tools/eval/change_scoring.h"
 #include "tools/eval/summary_stats.h"
@@ -44,8 +46,10 @@ struct EvalReport {
 EvalReport Evaluate(const sim::World& world, const sim::ObservationLog& observations,
                     const RunRecord& run, const EvalOptions& options = {});
 
-// report.json text: flat dotted keys ("changed_cells.f1", ...) with numbers (null for NaN).
-std::string ReportJson(const EvalReport& report);
+// report.json text: flat dotted keys ("changed_cells.f1", ...) with numbers (null for NaN),
+// then the `extra` keys, each with its value as JSON text (a number or null).
+std::string ReportJson(const EvalReport& report,
+                       const std::vector<std::pair<std::string, std::string>>& extra = {});
 // The paper's Tables 1/2: one row per matched line of every accepted merge.
 std::string LineTable(const EvalReport& report);
 // A short human-readable summary (report.md).

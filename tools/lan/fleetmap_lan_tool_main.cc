@@ -1,13 +1,14 @@
 // fleetmap-lan-tool: reads what a LAN experiment (tools/lan/fleetmap-lan-experiment)
 // recorded, and prepares its maps. See --help.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "core/command_line.h"
 #include "core/map_io.h"
-#include "core/version.h"
 #include "tools/lan/change_cost.h"
 #include "tools/lan/codec_sweep.h"
 #include "tools/lan/lan_log.h"
@@ -18,46 +19,14 @@ namespace {
 
 using namespace fleetmap;
 
-constexpr const char* kUsage = R"(usage: fleetmap-lan-tool COMMAND ARGS
-
-commands:
-  status [--until-utime U] LOG...
-                    the last STATUS_<process> heartbeat of every process in the LCM logs
-                    (lcm-logger files of the uplink and downlink): `status.<process>.<counter>`
-                    lines and `status.agents.<counter>` sums over the agents; with
-                    --until-utime only heartbeats sent before U (microseconds since 1970)
-  codec LOG...      every map tile in the logs (TEMPMAP_<id>, MAP_DELTA, MAP_KEYFRAME)
-                    encoded again with raw8 (1 byte per cell), none, zlib 1/6/9 and
-                    zstd 1/3/9/19: `codec.<group>.<variant>.bytes` lines (LCM payload bytes)
-  changes LOG...    the cost of one map change on the downlink: tile delta, whole keyframe
-                    and a ROS nav_msgs/OccupancyGrid of the whole map: `changes.*` lines
-  resample MAP.yaml OUT.yaml --resolution M
-                    the map at a coarser resolution (a whole multiple of the map's): a cell
-                    is occupied when any cell it covers is, free when half of them are
-Figures are printed as `name value unit` lines on stdout.
-Exit status: 0 on success, 1 on a log or map that cannot be read or written, 2 on usage errors.
-)";
-
 int Fail(const core::Status& s) {
   std::fprintf(stderr, "fleetmap-lan-tool: %s\n", s.ToString().c_str());
   return 1;
 }
 
-int LogCommand(const std::string& command, std::vector<std::string> logs) {
-  int64_t until_utime = 0;
-  if (command == "status" && logs.size() >= 2 && logs[0] == "--until-utime") {
-    char* end = nullptr;
-    until_utime = std::strtoll(logs[1].c_str(), &end, 10);
-    if (!end || *end != '\0' || until_utime <= 0) {
-      std::fprintf(stderr, "fleetmap-lan-tool: --until-utime takes microseconds since 1970\n");
-      return 2;
-    }
-    logs.erase(logs.begin(), logs.begin() + 2);
-  }
-  if (logs.empty()) {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
+// status, codec, changes: figures of the recorded LCM logs.
+int LogCommand(const std::string& command, const std::vector<std::string>& logs,
+               int64_t until_utime) {
   auto messages = lan::ReadLogs(logs);
   if (!messages.ok()) return Fail(messages.status());
   std::string lines;
@@ -70,18 +39,8 @@ int LogCommand(const std::string& command, std::vector<std::string> logs) {
   return 0;
 }
 
-int Resample(const std::vector<std::string>& args) {
-  if (args.size() != 4 || args[2] != "--resolution") {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
-  char* end = nullptr;
-  const double resolution_m = std::strtod(args[3].c_str(), &end);
-  if (!end || *end != '\0' || !(resolution_m > 0)) {
-    std::fprintf(stderr, "fleetmap-lan-tool: --resolution takes metres > 0\n");
-    return 2;
-  }
-  auto map = core::LoadMapServerMap(args[0]);
+int Resample(const std::string& in, const std::string& out, double resolution_m) {
+  auto map = core::LoadMapServerMap(in);
   if (!map.ok()) return Fail(map.status());
   const double ratio = resolution_m / map->grid.geometry().resolution_m();
   const int factor = static_cast<int>(std::lround(ratio));
@@ -91,9 +50,9 @@ int Resample(const std::vector<std::string>& args) {
     return 2;
   }
   const core::OccupancyGrid coarse = lan::ResampleMap(map->grid, factor);
-  const core::Status saved = core::SaveMapServerMap(coarse, args[1]);
+  const core::Status saved = core::SaveMapServerMap(coarse, out);
   if (!saved.ok()) return Fail(saved);
-  std::printf("wrote %s: %d x %d cells at %g m\n", args[1].c_str(), coarse.geometry().width(),
+  std::printf("wrote %s: %d x %d cells at %g m\n", out.c_str(), coarse.geometry().width(),
               coarse.geometry().height(), coarse.geometry().resolution_m());
   return 0;
 }
@@ -101,17 +60,49 @@ int Resample(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-lan-tool")) return 0;
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::fputs(kUsage, args.empty() ? stderr : stdout);
-    return args.empty() ? 2 : 0;
-  }
-  const std::string& command = args[0];
-  const std::vector<std::string> rest(args.begin() + 1, args.end());
-  if (command == "status" || command == "codec" || command == "changes")
-    return LogCommand(command, rest);
-  if (command == "resample") return Resample(rest);
-  std::fprintf(stderr, "fleetmap-lan-tool: unknown command '%s'\n\n%s", command.c_str(), kUsage);
-  return 2;
+  CLI::App app(
+      "Reads what a LAN experiment (fleetmap-lan-experiment) recorded, and prepares its maps.\n"
+      "Figures are printed as `name value unit` lines on stdout.\n"
+      "Exit status: 0 on success, 1 on a log or map that cannot be read or written, 2 on "
+      "usage errors.",
+      "fleetmap-lan-tool");
+  core::AddVersionFlag(app);
+  app.require_subcommand(1);
+  std::vector<std::string> logs;
+  int64_t until_utime = 0;
+  CLI::App* status = app.add_subcommand(
+      "status",
+      "the last STATUS_<process> heartbeat of every process in the LCM logs (lcm-logger files "
+      "of the uplink and downlink): `status.<process>.<counter>` lines and "
+      "`status.agents.<counter>` sums over the agents");
+  status
+      ->add_option("--until-utime", until_utime,
+                   "only heartbeats sent before this time, microseconds since 1970")
+      ->check(CLI::Range(int64_t{1}, std::numeric_limits<int64_t>::max()));
+  CLI::App* codec = app.add_subcommand(
+      "codec",
+      "every map tile in the logs (TEMPMAP_<id>, MAP_DELTA, MAP_KEYFRAME) encoded again with "
+      "raw8 (1 byte per cell), none, zlib 1/6/9 and zstd 1/3/9/19: "
+      "`codec.<group>.<variant>.bytes` lines (LCM payload bytes)");
+  CLI::App* changes = app.add_subcommand(
+      "changes",
+      "the cost of one map change on the downlink: tile delta, whole keyframe and a ROS "
+      "nav_msgs/OccupancyGrid of the whole map: `changes.*` lines");
+  for (CLI::App* command : {status, codec, changes})
+    command->add_option("LOG", logs, "LCM logs")->required();
+  CLI::App* resample = app.add_subcommand(
+      "resample",
+      "the map at a coarser resolution (a whole multiple of the map's): a cell is occupied "
+      "when any cell it covers is, free when half of them are");
+  std::string map_in, map_out;
+  double resolution_m = 0.0;
+  resample->add_option("MAP.yaml", map_in, "the map_server map to read")->required();
+  resample->add_option("OUT.yaml", map_out, "the map_server map to write")->required();
+  resample->add_option("--resolution", resolution_m, "metres per cell of the result")
+      ->check(core::Finite() & CLI::PositiveNumber)
+      ->required();
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
+  if (resample->parsed()) return Resample(map_in, map_out, resolution_m);
+  const CLI::App* command = app.get_subcommands().front();
+  return LogCommand(command->get_name(), logs, until_utime);
 }
