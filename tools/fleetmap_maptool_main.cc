@@ -1,71 +1,47 @@
 // fleetmap-maptool: small jobs on map_server maps from the command line. See --help.
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
 #include "core/codecs/map_render.h"
+#include "core/command_line.h"
 #include "core/map_io.h"
-#include "core/number_text.h"
 #include "core/tile_delta.h"
-#include "core/version.h"
 #include "tools/sim/livinglab_map.h"
 
 namespace {
 
 using namespace fleetmap;
 
-constexpr const char* kUsage = R"(usage: fleetmap-maptool COMMAND ARGS
-
-commands:
-  livinglab OUT.yaml            write the default static map (the paper's 60 m x 18 m hall)
-  info MAP.yaml                 print geometry and cell counts
-  render MAP.yaml OUT.png [--scale N]
-                                draw the map (free white, occupied black, unknown grey)
-  codec MAP.yaml [--tile N] [--packing tristate2|tristate8|logodds8]
-                 [--compression none|zstd|zlib] [--level L]
-                                encode the map as tiles, decode it back, check it and
-                                print the sizes and times
-  diff BEFORE.yaml AFTER.yaml [--tile N]
-                                size of the tile delta that turns BEFORE into AFTER
-Exit status: 0 on success, 1 on a bad map or argument, 2 on usage errors.
-)";
-
 int Fail(const core::Status& s) {
   std::fprintf(stderr, "fleetmap-maptool: %s\n", s.ToString().c_str());
   return 1;
 }
 
-// The value after `flag` in args, or `fallback`.
-std::string Flag(const std::vector<std::string>& args, const std::string& flag,
-                 const std::string& fallback) {
-  for (size_t i = 0; i + 1 < args.size(); ++i)
-    if (args[i] == flag) return args[i + 1];
-  return fallback;
-}
+// The tile codec as the flags name it.
+struct TileFlags {
+  int tile_size_cells = 64;
+  std::string packing = "tristate2";
+  std::string compression = "zstd";
+  int level = 3;
+};
 
-core::Result<core::TileOptions> ParseTileOptions(const std::vector<std::string>& args) {
+core::Result<core::TileOptions> ParseTileOptions(const TileFlags& flags) {
   core::TileOptions o;
-  try {
-    o.tile_size_cells = core::IntegerOrThrow(Flag(args, "--tile", "64"), "--tile");
-    o.codec.level = core::IntegerOrThrow(Flag(args, "--level", "3"), "--level");
-  } catch (const std::exception&) {
-    return core::InvalidArgument("--tile and --level take whole numbers");
-  }
-  const std::string packing = Flag(args, "--packing", "tristate2");
-  const std::string compression = Flag(args, "--compression", "zstd");
+  o.tile_size_cells = flags.tile_size_cells;
+  o.codec.level = flags.level;
   bool found = false;
   for (auto p : {core::CellPacking::kTriState2Bit, core::CellPacking::kTriState8Bit,
                  core::CellPacking::kLogOddsInt8}) {
-    if (packing == core::CellPackingName(p)) o.codec.packing = p, found = true;
+    if (flags.packing == core::CellPackingName(p)) o.codec.packing = p, found = true;
   }
-  if (!found) return core::InvalidArgument("unknown --packing '" + packing + "'");
+  if (!found) return core::InvalidArgument("unknown --packing '" + flags.packing + "'");
   found = false;
   for (auto c : {core::Compression::kNone, core::Compression::kZstd, core::Compression::kZlib}) {
-    if (compression == core::CompressionName(c)) o.codec.compression = c, found = true;
+    if (flags.compression == core::CompressionName(c)) o.codec.compression = c, found = true;
   }
-  if (!found) return core::InvalidArgument("unknown --compression '" + compression + "'");
+  if (!found) return core::InvalidArgument("unknown --compression '" + flags.compression + "'");
   FLEETMAP_RETURN_IF_ERROR(o.Validate());
   return o;
 }
@@ -84,10 +60,10 @@ int Info(const std::string& path) {
   return 0;
 }
 
-int Codec(const std::string& path, const std::vector<std::string>& args) {
+int Codec(const std::string& path, const TileFlags& flags) {
   auto map = core::LoadMapServerMap(path);
   if (!map.ok()) return Fail(map.status());
-  auto options = ParseTileOptions(args);
+  auto options = ParseTileOptions(flags);
   if (!options.ok()) return Fail(options.status());
   const auto start = std::chrono::steady_clock::now();
   const auto tiles = core::EncodeAllTiles(map->grid, *options);
@@ -114,7 +90,7 @@ int Codec(const std::string& path, const std::vector<std::string>& args) {
   return mismatches == 0 ? 0 : 1;
 }
 
-int Diff(const std::string& a, const std::string& b, const std::vector<std::string>& args) {
+int Diff(const std::string& a, const std::string& b, const TileFlags& flags) {
   auto before = core::LoadMapServerMap(a);
   if (!before.ok()) return Fail(before.status());
   auto after = core::LoadMapServerMap(b);
@@ -122,42 +98,78 @@ int Diff(const std::string& a, const std::string& b, const std::vector<std::stri
   if (!(before->grid.geometry() == after->grid.geometry())) {
     return Fail(core::InvalidArgument("the two maps differ in geometry"));
   }
-  auto options = ParseTileOptions(args);
+  auto options = ParseTileOptions(flags);
   if (!options.ok()) return Fail(options.status());
   const auto delta = core::EncodeChangedTiles(before->grid, after->grid, *options);
   std::printf("delta: %zu tiles, %zu B\n", delta.size(), core::TotalFrameBytes(delta));
   return 0;
 }
 
+int Render(const std::string& path, const std::string& png, int scale) {
+  auto map = core::LoadMapServerMap(path);
+  if (!map.ok()) return Fail(map.status());
+  core::RenderOptions options;
+  options.scale_pixels_per_cell = scale;
+  const core::Status s = core::RenderGridToPng(map->grid, png, options);
+  if (!s.ok()) return Fail(s);
+  std::printf("wrote %s\n", png.c_str());
+  return 0;
+}
+
+int LivingLab(const std::string& out) {
+  const core::Status s = core::SaveMapServerMap(sim::MakeLivingLabMap(), out);
+  if (!s.ok()) return Fail(s);
+  std::printf("wrote %s\n", out.c_str());
+  return 0;
+}
+
+void AddTileFlags(CLI::App* command, TileFlags& flags, bool codec) {
+  command->add_option("--tile", flags.tile_size_cells, "tile edge, cells")->capture_default_str();
+  if (!codec) return;
+  command->add_option("--packing", flags.packing, "tristate2, tristate8 or logodds8")
+      ->capture_default_str();
+  command->add_option("--compression", flags.compression, "none, zstd or zlib")
+      ->capture_default_str();
+  command->add_option("--level", flags.level, "compression level")->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-maptool")) return 0;
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::fputs(kUsage, args.empty() ? stderr : stdout);
-    return args.empty() ? 2 : 0;
-  }
-  const std::string& cmd = args[0];
-  if (cmd == "livinglab" && args.size() >= 2) {
-    const core::Status s = core::SaveMapServerMap(sim::MakeLivingLabMap(), args[1]);
-    if (!s.ok()) return Fail(s);
-    std::printf("wrote %s\n", args[1].c_str());
-    return 0;
-  }
-  if (cmd == "info" && args.size() >= 2) return Info(args[1]);
-  if (cmd == "render" && args.size() >= 3) {
-    auto map = core::LoadMapServerMap(args[1]);
-    if (!map.ok()) return Fail(map.status());
-    core::RenderOptions options;
-    options.scale_pixels_per_cell = std::atoi(Flag(args, "--scale", "1").c_str());
-    const core::Status s = core::RenderGridToPng(map->grid, args[2], options);
-    if (!s.ok()) return Fail(s);
-    std::printf("wrote %s\n", args[2].c_str());
-    return 0;
-  }
-  if (cmd == "codec" && args.size() >= 2) return Codec(args[1], args);
-  if (cmd == "diff" && args.size() >= 3) return Diff(args[1], args[2], args);
-  std::fprintf(stderr, "fleetmap-maptool: unknown command or missing arguments\n%s", kUsage);
-  return 2;
+  CLI::App app(
+      "Small jobs on map_server maps.\n"
+      "Exit status: 0 on success, 1 on a bad map or argument, 2 on usage errors.",
+      "fleetmap-maptool");
+  core::AddVersionFlag(app);
+  app.require_subcommand(1);
+  std::string map, other, out;
+  int scale = 1;
+  TileFlags flags;
+  CLI::App* livinglab = app.add_subcommand(
+      "livinglab", "write the default static map (the paper's 60 m x 18 m hall)");
+  livinglab->add_option("OUT.yaml", out, "the map to write")->required();
+  CLI::App* info = app.add_subcommand("info", "print geometry and cell counts");
+  info->add_option("MAP.yaml", map, "the map")->required();
+  CLI::App* render =
+      app.add_subcommand("render", "draw the map (free white, occupied black, unknown grey)");
+  render->add_option("MAP.yaml", map, "the map")->required();
+  render->add_option("OUT.png", out, "the picture to write")->required();
+  render->add_option("--scale", scale, "pixels per cell")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  CLI::App* codec = app.add_subcommand(
+      "codec", "encode the map as tiles, decode it back, check it and print the sizes and times");
+  codec->add_option("MAP.yaml", map, "the map")->required();
+  AddTileFlags(codec, flags, true);
+  CLI::App* diff =
+      app.add_subcommand("diff", "size of the tile delta that turns BEFORE into AFTER");
+  diff->add_option("BEFORE.yaml", map, "the map before")->required();
+  diff->add_option("AFTER.yaml", other, "the map after")->required();
+  AddTileFlags(diff, flags, false);
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
+  if (livinglab->parsed()) return LivingLab(out);
+  if (info->parsed()) return Info(map);
+  if (render->parsed()) return Render(map, out, scale);
+  if (codec->parsed()) return Codec(map, flags);
+  return Diff(map, other, flags);
 }
