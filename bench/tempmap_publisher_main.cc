@@ -90,10 +90,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   app.add_option("--period", period_s, "each vehicle closes a map every this many seconds")
-      ->check(fleetmap::core::Finite() & CLI::PositiveNumber)
+      ->check(fleetmap::core::Positive())
       ->capture_default_str();
   app.add_option("--duration", duration_s, "stop after this many seconds")
-      ->check(fleetmap::core::Finite() & CLI::PositiveNumber)
+      ->check(fleetmap::core::Positive())
       ->capture_default_str();
   if (const auto exit_status = fleetmap::core::ParseCommandLine(app, argc, argv))
     return *exit_status;

@@ -36,6 +36,18 @@ inline CLI::Validator Finite() {
       "", "finite");
 }
 
+// A check for a number flag that must be finite and above 0 (a period, a resolution).
+inline CLI::Validator Positive() {
+  return CLI::Validator(
+      [](std::string& text) {
+        double value = 0.0;
+        return CLI::detail::lexical_cast(text, value) && std::isfinite(value) && value > 0
+                   ? std::string()
+                   : "not a number above 0: " + text;
+      },
+      "", "positive");
+}
+
 // Parses the command line into `app`. No value: go on. Otherwise the exit status: 0 after
 // --help or --version (printed on stdout), 2 after a usage error, printed on stderr as
 // "<program>: <what was wrong> (see --help)".

@@ -13,10 +13,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <lcm/lcm-cpp.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 
-#include "core/version.h"
+#include "core/command_line.h"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/laser_scan_t.hpp"
 #include "fleetmap/map_delta_t.hpp"
@@ -42,26 +43,22 @@ struct Options {
   int period_ms = 200;                                      // time between rounds, milliseconds
 };
 
-constexpr char kUsage[] =
-    "usage: fleetmap-publish-samples [--lcm-url URL] [--count N] [--period-ms MS]\n"
-    "Publishes one sample of every fleetmap LCM type per round (default: every 200 ms until\n"
-    "Ctrl-C) on udpm://239.255.76.67:7667?ttl=0 or URL.\n";
-
-bool ParseArgs(int argc, char** argv, Options* options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--lcm-url" && has_value) {
-      options->lcm_url = argv[++i];
-    } else if (arg == "--count" && has_value) {
-      options->count = std::atoi(argv[++i]);
-    } else if (arg == "--period-ms" && has_value) {
-      options->period_ms = std::atoi(argv[++i]);
-    } else {
-      return false;
-    }
-  }
-  return options->count >= 0 && options->period_ms > 0;
+// Reads the command line into `options`. No value: go on; otherwise the exit status.
+std::optional<int> ParseArgs(int argc, char** argv, Options* options) {
+  CLI::App app(
+      "Publishes one sample of every fleetmap LCM type per round, for lcm-spy\n"
+      "(docs/lcm_spy.md), until Ctrl-C or --count rounds.\n"
+      "Exit status: 0 after the last round or a stop, 1 no LCM, 2 usage errors.",
+      "fleetmap-publish-samples");
+  core::AddVersionFlag(app);
+  app.add_option("--lcm-url", options->lcm_url, "the LCM group")->capture_default_str();
+  app.add_option("--count", options->count, "rounds to publish; 0: until SIGINT")
+      ->check(CLI::Range(0, 1000000000))
+      ->capture_default_str();
+  app.add_option("--period-ms", options->period_ms, "time between rounds, milliseconds")
+      ->check(CLI::Range(1, 3600000))
+      ->capture_default_str();
+  return core::ParseCommandLine(app, argc, argv);
 }
 
 int64_t NowUtime() {
@@ -249,14 +246,7 @@ void PublishRound(lcm::LCM& lcm, int round) {
 
 int Run(int argc, char** argv) {
   Options options;
-  if (argc > 1 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  if (!ParseArgs(argc, argv, &options)) {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
+  if (const auto exit_status = ParseArgs(argc, argv, &options)) return *exit_status;
   lcm::LCM lcm(options.lcm_url);
   if (!lcm.good()) {
     std::fprintf(stderr, "cannot open LCM at %s (multicast route? see docs/lcm_spy.md)\n",
@@ -275,7 +265,4 @@ int Run(int argc, char** argv) {
 }  // namespace
 }  // namespace fleetmap::tools
 
-int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-publish-samples")) return 0;
-  return fleetmap::tools::Run(argc, argv);
-}
+int main(int argc, char** argv) { return fleetmap::tools::Run(argc, argv); }

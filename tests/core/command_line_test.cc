@@ -57,6 +57,15 @@ TEST(CommandLineTest, ABadValueIsAUsageErrorThatNamesTheFlag) {
   }
 }
 
+TEST(CommandLineTest, PositiveRefusesZeroNegativeAndNotFinite) {
+  for (const char* bad : {"0", "-1", "nan", "inf", "1s"}) {
+    std::string text = bad;
+    EXPECT_FALSE(Positive()(text).empty()) << bad;
+  }
+  std::string good = "0.05";
+  EXPECT_EQ(Positive()(good), "");
+}
+
 TEST(CommandLineTest, AnUnknownFlagIsAUsageError) {
   const Parsed p = Parse({"fleetmap-test", "--perod", "2"});
   EXPECT_EQ(p.exit_status, 2);

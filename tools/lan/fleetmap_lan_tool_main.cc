@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
   resample->add_option("MAP.yaml", map_in, "the map_server map to read")->required();
   resample->add_option("OUT.yaml", map_out, "the map_server map to write")->required();
   resample->add_option("--resolution", resolution_m, "metres per cell of the result")
-      ->check(core::Finite() & CLI::PositiveNumber)
+      ->check(core::Positive())
       ->required();
   if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   if (resample->parsed()) return Resample(map_in, map_out, resolution_m);
