@@ -5,42 +5,19 @@
 #include <csignal>
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <variant>
 #include <vector>
 
-#include "core/number_text.h"
-#include "core/version.h"
+#include "core/command_line.h"
 #include "lcmtypes/convert.h"
 #include "tools/simlcm/sim_publisher.h"
 
 namespace {
 
 using namespace fleetmap;
-
-constexpr const char* kUsage = R"(usage: fleetmap-sim --scenario SCENARIO.yaml [options]
-
-Simulates the scenario's vehicles and publishes, per vehicle ID:
-  SCAN_<ID> (laser_scan_t), ODOM_<ID> (odometry_t), EXTPOSE_<ID> (vehicles with an external
-  localization) and TRUTH_<ID> (ground-truth pose, pose_with_covariance_t).
-options:
-  --scenario FILE  scenario YAML (docs/scenario.md; required)
-  --map FILE       static map instead of the scenario's
-  --speed X        simulated seconds per wall-clock second; 0 = as fast as possible  [1]
-  --duration S     stop after S simulated seconds           [the scenario's duration]
-  --lcm-url URL    where to publish                [udpm://239.255.76.69:7669?ttl=0]
-  --epoch S        add S seconds to every time stamp; default: the wall clock at start
-  --no-truth       do not publish TRUTH_<ID>
-  --vehicles A,B   publish only these vehicles (e.g. one simulator per vehicle host in a LAN
-                   experiment; the world, with every vehicle in it, is the same)   [all]
-  --list-vehicles  print a line `ID X Y THETA MX MY MTHETA` per vehicle (metres, radians: its
-                   pose at time 0, an agent's --initial-pose, and its scanner mount, the
-                   agent's --scanner-mount), a line `map FILE` (the static map), and exit
-  -h, --help       this text
-Stops cleanly on SIGINT/SIGTERM. Exit status: 0 done, 1 bad scenario or LCM failure, 2 usage.
-The multicast URL needs a route (loopback: ip route add 224.0.0.0/4 dev lo).
-)";
 
 volatile std::sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
@@ -52,39 +29,42 @@ struct Args {
   std::string vehicles;  // comma-separated ids; empty: all
 };
 
-bool Parse(int argc, char** argv, Args& a) {
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      const bool has_value = i + 1 < argc;
-      if (arg == "--scenario" && has_value)
-        a.scenario = argv[++i];
-      else if (arg == "--map" && has_value)
-        a.map = argv[++i];
-      else if (arg == "--speed" && has_value)
-        a.speed = core::NumberOrThrow(argv[++i], arg);
-      else if (arg == "--duration" && has_value)
-        a.duration = core::NumberOrThrow(argv[++i], arg);
-      else if (arg == "--lcm-url" && has_value)
-        a.url = argv[++i];
-      else if (arg == "--epoch" && has_value)
-        a.epoch = core::NumberOrThrow(argv[++i], arg);
-      else if (arg == "--no-truth")
-        a.truth = false;
-      else if (arg == "--vehicles" && has_value)
-        a.vehicles = argv[++i];
-      else if (arg == "--list-vehicles")
-        a.list_vehicles = true;
-      else {
-        std::fprintf(stderr, "fleetmap-sim: bad or incomplete argument '%s'\n", arg.c_str());
-        return false;
-      }
-    }
-  } catch (const std::exception&) {
-    std::fprintf(stderr, "fleetmap-sim: --speed, --duration and --epoch take numbers\n");
-    return false;
-  }
-  return !a.scenario.empty() && a.speed >= 0.0;
+// Reads the command line into `a`. No value: go on; otherwise the exit status.
+std::optional<int> Parse(int argc, char** argv, Args& a) {
+  CLI::App app(
+      "Simulates the scenario's vehicles and publishes, per vehicle ID: SCAN_<ID>\n"
+      "(laser_scan_t), ODOM_<ID> (odometry_t), EXTPOSE_<ID> (vehicles with an external\n"
+      "localization) and TRUTH_<ID> (ground-truth pose, pose_with_covariance_t).\n"
+      "Stops cleanly on SIGINT/SIGTERM. Exit status: 0 done, 1 bad scenario or LCM failure,\n"
+      "2 usage errors. The multicast URL needs a route (loopback: ip route add 224.0.0.0/4\n"
+      "dev lo).",
+      "fleetmap-sim");
+  core::AddVersionFlag(app);
+  app.add_option("--scenario", a.scenario, "scenario YAML (docs/scenario.md)")->required();
+  app.add_option("--map", a.map, "static map instead of the scenario's");
+  app.add_option("--speed", a.speed,
+                 "simulated seconds per wall-clock second; 0 = as fast as possible")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  app.add_option("--duration", a.duration,
+                 "stop after this many simulated seconds (default: the scenario's duration)")
+      ->check(core::Finite());
+  app.add_option("--lcm-url", a.url, "where to publish")->capture_default_str();
+  app.add_option("--epoch", a.epoch,
+                 "add this many seconds to every time stamp (default: the wall clock at start)")
+      ->check(core::Finite());
+  bool no_truth = false;
+  app.add_flag("--no-truth", no_truth, "do not publish TRUTH_<ID>");
+  app.add_option("--vehicles", a.vehicles,
+                 "publish only these vehicles, A,B (e.g. one simulator per vehicle host in a LAN "
+                 "experiment; the world, with every vehicle in it, is the same; default: all)");
+  app.add_flag("--list-vehicles", a.list_vehicles,
+               "print a line `ID X Y THETA MX MY MTHETA` per vehicle (metres, radians: its pose "
+               "at time 0, an agent's --initial-pose, and its scanner mount, the agent's "
+               "--scanner-mount), a line `map FILE` (the static map), and exit");
+  const auto exit_status = core::ParseCommandLine(app, argc, argv);
+  a.truth = !no_truth;
+  return exit_status;
 }
 
 double WallNow() {
@@ -94,18 +74,8 @@ double WallNow() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-sim")) return 0;
-  for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-  }
   Args args;
-  if (!Parse(argc, argv, args)) {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
+  if (const auto exit_status = Parse(argc, argv, args)) return *exit_status;
   auto world = sim::World::Load(args.scenario, args.map);
   if (!world.ok()) {
     std::fprintf(stderr, "fleetmap-sim: %s\n", world.status().ToString().c_str());
