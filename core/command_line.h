@@ -1,6 +1,6 @@
 // Every program reads its command line the same way: CLI11 (Debian's libcli11-dev), --help
 // and --version alike everywhere, a bad value named with its flag. Target
-// fleetmap_command_line: this header alone, for programs that need nothing else of core.
+// fleetmap_command_line (this header and core's number parsing).
 //
 //   CLI::App app("What the program does.", "fleetmap-x");
 //   core::AddVersionFlag(app);
@@ -9,11 +9,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
 
+#include "core/number_text.h"
 #include "core/version.h"
 
 namespace fleetmap::core {
@@ -23,30 +23,21 @@ inline void AddVersionFlag(CLI::App& app) {
   app.set_version_flag("--version", app.get_name() + " " + kFleetmapVersion);
 }
 
-// A check for a number flag: CLI11 refuses "60s", "3.5" for a whole number and "-5" for an
-// unsigned one, but reads "nan" and "inf" as doubles.
-inline CLI::Validator Finite() {
+// Checks for number flags, worded as core::ParseNumber words them (the whole text a finite
+// number). CLI11 itself refuses "60s", "3.5" for a whole number and "-5" for an unsigned one,
+// but reads "nan" and "inf" as doubles.
+inline CLI::Validator NumberCheck(bool above_zero) {
   return CLI::Validator(
-      [](std::string& text) {
-        double value = 0.0;
-        return CLI::detail::lexical_cast(text, value) && std::isfinite(value)
-                   ? std::string()
-                   : "not a finite number: " + text;
+      [above_zero](std::string& text) {
+        const Result<double> value = ParseNumber(text, "value");
+        if (!value.ok()) return value.status().message();
+        return above_zero && !(*value > 0) ? "value: not above 0: '" + text + "'" : std::string();
       },
-      "", "finite");
+      "", above_zero ? "positive" : "finite");
 }
-
-// A check for a number flag that must be finite and above 0 (a period, a resolution).
-inline CLI::Validator Positive() {
-  return CLI::Validator(
-      [](std::string& text) {
-        double value = 0.0;
-        return CLI::detail::lexical_cast(text, value) && std::isfinite(value) && value > 0
-                   ? std::string()
-                   : "not a number above 0: " + text;
-      },
-      "", "positive");
-}
+inline CLI::Validator Finite() { return NumberCheck(false); }
+// A period, a resolution: finite and above 0.
+inline CLI::Validator Positive() { return NumberCheck(true); }
 
 // Parses the command line into `app`. No value: go on. Otherwise the exit status: 0 after
 // --help or --version (printed on stdout), 2 after a usage error, printed on stderr as
