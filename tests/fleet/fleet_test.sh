@@ -7,16 +7,18 @@
 # vehicle ends holding exactly the fleet's final map, and that replaying the uplink log gives
 # the same map byte for byte.
 #   tests/fleet/fleet_test.sh BIN_DIR OUT_DIR PORT [--loss P] [--min-f1 F] [--speed X]
+#                             [--replay-speeds "1 4 10"]
 # Exits 77 (ctest: skipped) with the reason when multicast on loopback cannot be set up.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bin=${1:?BIN_DIR}; out=${2:?OUT_DIR}; port=${3:?PORT}; shift 3
-loss=0 min_f1=0.95 speed=4
+loss=0 min_f1=0.95 speed=4 replay_speeds="1 4 10"
 while [ $# -gt 0 ]; do
   case $1 in
     --loss) loss=$2; shift 2 ;;
     --min-f1) min_f1=$2; shift 2 ;;
     --speed) speed=$2; shift 2 ;;
+    --replay-speeds) replay_speeds=$2; shift 2 ;;
     *) echo "fleet_test.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -67,7 +69,7 @@ if [ "$loss" = 0 ]; then
     --list-vehicles | sed -n 's/^map //p')
   live=$(grep '^aggregator: version' "$out/logs/aggregator.txt" | tail -1)
   live_merged=$(sed -n 's/.* merged \([0-9]*\) .*/\1/p' <<<"$live")
-  for s in 1 4 10; do
+  for s in $replay_speeds; do
     "$bin/fleetmap-aggregator" --map "$static_map" --uplink-url "$url" \
       --downlink-url "udpm://239.255.76.68:$((port + 6))?ttl=0" >"$out/logs/logplayer_$s.txt" 2>&1 &
     aggregator=$!
