@@ -72,11 +72,6 @@ fi
 figures=$(for f in out/bench/*_bench.txt; do sed -n '/^# figures$/,$p' "$f" | sed 1d; done)
 echo
 echo "$figures"
-{
-  echo "{"
-  echo "$figures" | awk 'NF == 3 { printf "%s  \"%s\": {\"value\": %s, \"unit\": \"%s\"}", sep, $1, $2, $3; sep = ",\n" }'
-  echo
-  echo "}"
-} >out/bench.json
+scripts/figures_json.sh <<<"$figures" >out/bench.json
 echo "wrote out/bench.json" >&2
 if [[ ${#failed[@]} -gt 0 ]]; then echo "run_bench: FAILED: ${failed[*]} (their figures are missing)" >&2; exit 1; fi

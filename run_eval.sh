@@ -118,10 +118,5 @@ for pair in "${logs[@]}"; do
   figures+=$("$bin"/fleetmap-carmen-eval --carmen "$log" --relations "$rel" --audit 1 --png "out/eval/$(basename "$log" .rebuilt.clf).png" 2>/dev/null)$'\n'
 done
 printf '%s' "$figures"
-{
-  echo "{"
-  printf '%s' "$figures" | awk 'NF == 3 { printf "%s  \"%s\": {\"value\": %s, \"unit\": \"%s\"}", sep, $1, ($2 == "nan" ? "null" : $2), $3; sep = ",\n" }'
-  echo
-  echo "}"
-} >out/eval.json
+scripts/figures_json.sh <<<"$figures" >out/eval.json
 echo "run_eval: wrote out/eval.json; reports and pictures in out/eval/" >&2

@@ -24,20 +24,41 @@ inline void AddVersionFlag(CLI::App& app) {
 }
 
 // Checks for number flags, worded as core::ParseNumber words them (the whole text a finite
-// number). CLI11 itself refuses "60s", "3.5" for a whole number and "-5" for an unsigned one,
-// but reads "nan" and "inf" as doubles.
-inline CLI::Validator NumberCheck(bool above_zero) {
+// number). CLI11 itself refuses "60s" and "3.5" for a whole number, but reads "nan" and "inf"
+// as doubles.
+enum class NumberRange { kAny, kNotNegative, kPositive };
+inline CLI::Validator NumberCheck(NumberRange range) {
   return CLI::Validator(
-      [above_zero](std::string& text) {
+      [range](std::string& text) {
         const Result<double> value = ParseNumber(text, "value");
         if (!value.ok()) return value.status().message();
-        return above_zero && !(*value > 0) ? "value: not above 0: '" + text + "'" : std::string();
+        if (range == NumberRange::kPositive && !(*value > 0))
+          return "value: not above 0: '" + text + "'";
+        if (range == NumberRange::kNotNegative && *value < 0)
+          return "value: below 0: '" + text + "'";
+        return std::string();
       },
-      "", above_zero ? "positive" : "finite");
+      "",
+      range == NumberRange::kAny        ? "finite"
+      : range == NumberRange::kPositive ? "positive"
+                                        : ">= 0");
 }
-inline CLI::Validator Finite() { return NumberCheck(false); }
+inline CLI::Validator Finite() { return NumberCheck(NumberRange::kAny); }
+// A duration, a count of seconds to wait: finite and not below 0.
+inline CLI::Validator NotNegative() { return NumberCheck(NumberRange::kNotNegative); }
 // A period, a resolution: finite and above 0.
-inline CLI::Validator Positive() { return NumberCheck(true); }
+inline CLI::Validator Positive() { return NumberCheck(NumberRange::kPositive); }
+
+// A count, a version, a seed: digits only. CLI11 2.1 reads "-2" into an unsigned variable as
+// 2^64 - 2.
+inline CLI::Validator WholeNumber() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const Result<uint64_t> value = ParseCount(text, "value");
+        return value.ok() ? std::string() : value.status().message();
+      },
+      "", "whole number");
+}
 
 // Parses the command line into `app`. No value: go on. Otherwise the exit status: 0 after
 // --help or --version (printed on stdout), 2 after a usage error, printed on stderr as

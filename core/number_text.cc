@@ -3,7 +3,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <stdexcept>
 
 namespace fleetmap::core {
 
@@ -24,19 +23,6 @@ Result<uint64_t> ParseCount(const std::string& text, const std::string& what, ui
   if (errno == ERANGE || v > max)
     return InvalidArgument(what + ": " + text + " is above " + std::to_string(max));
   return static_cast<uint64_t>(v);
-}
-
-double NumberOrThrow(const std::string& text, const std::string& what) {
-  Result<double> v = ParseNumber(text, what);
-  if (!v.ok()) throw std::invalid_argument(v.status().message());
-  return *v;
-}
-
-int IntegerOrThrow(const std::string& text, const std::string& what) {
-  const bool negative = !text.empty() && text[0] == '-';
-  Result<uint64_t> v = ParseCount(negative ? text.substr(1) : text, what, 1u << 30);
-  if (!v.ok()) throw std::invalid_argument(what + ": not a whole number: '" + text + "'");
-  return negative ? -static_cast<int>(*v) : static_cast<int>(*v);
 }
 
 }  // namespace fleetmap::core

@@ -16,9 +16,4 @@ Result<double> ParseNumber(const std::string& text, const std::string& what);
 Result<uint64_t> ParseCount(const std::string& text, const std::string& what,
                             uint64_t max = UINT64_MAX);
 
-// For flag parsers that catch std::invalid_argument to print their usage: the same checks
-// as ParseNumber, and a whole number with an optional '-', thrown with the reason.
-double NumberOrThrow(const std::string& text, const std::string& what);
-int IntegerOrThrow(const std::string& text, const std::string& what);
-
 }  // namespace fleetmap::core

@@ -4,35 +4,26 @@
 // The recordings are read where they are and never copied into the repository; without them
 // the corpora hold our own outputs only. The build runs it (fuzz/CMakeLists.txt).
 #include <cstdio>
-#include <cstring>
+#include <string>
 
+#include "core/command_line.h"
 #include "fuzz/seed_sources.h"
 
 namespace fleetmap::fuzz {
 namespace {
 
-constexpr char kUsage[] =
-    "usage: fleetmap-fuzz-seeds --source REPO_DIR --data SHARED_DATA_DIR --out DIR\n"
-    "Writes DIR/<target>/<seed> for every fuzz target and prints the count per target.\n";
-
 int Run(int argc, char** argv) {
   SeedInputs in;
-  std::filesystem::path out;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--source") == 0) {
-      in.source_dir = argv[i + 1];
-    } else if (std::strcmp(argv[i], "--data") == 0) {
-      in.data_dir = argv[i + 1];
-    } else if (std::strcmp(argv[i], "--out") == 0) {
-      out = argv[i + 1];
-    } else {
-      break;
-    }
-  }
-  if (argc != 7 || in.source_dir.empty() || out.empty()) {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
+  std::string out;
+  CLI::App app("Writes DIR/<target>/<seed> for every fuzz target and prints the count per target.",
+               "fleetmap-fuzz-seeds");
+  core::AddVersionFlag(app);
+  app.add_option("--source", in.source_dir, "the repository")->required()->type_name("REPO_DIR");
+  app.add_option("--data", in.data_dir, "the shared data folder (FLEETMAP_DATA_DIR)")
+      ->required()
+      ->type_name("SHARED_DATA_DIR");
+  app.add_option("--out", out, "where the corpora go")->required()->type_name("DIR");
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   if (!std::filesystem::is_directory(in.data_dir)) {
     std::fprintf(stderr, "fleetmap-fuzz-seeds: no %s: seeds from our own encoders only\n",
                  in.data_dir.c_str());

@@ -8,7 +8,7 @@
 # the final map from the uplink log to show that it is the same, byte for byte.
 #
 #   scripts/fleet_run.sh [--scenario FILE] [--speed X] [--duration S] [--out DIR]
-#                        [--port P] [--bin DIR] [--name NAME]
+#                        [--port P] [--bin DIR] [--name NAME] [--loss P] [--key]
 #     --scenario FILE  scenario YAML             [tools/sim/worlds/livinglab/fleet.yaml]
 #     --speed X        simulated seconds per wall-clock second                     [4]
 #     --duration S     simulated seconds                     [the scenario's duration]
@@ -20,6 +20,9 @@
 #                      fleet then runs in its own network namespace whose loopback drops
 #                      them (tc: HTB + a random classic-BPF filter, for kernels without
 #                      netem); the sensor group (on the vehicle) is spared          [0]
+#     --key            a new fleet key (fleetmap-keygen, OUT/fleet.key) on every process:
+#                      everything sent is signed, only verified messages count, and the
+#                      evaluation and the replay check the signatures (docs/security.md)
 #     --programs       print the programs this script runs (the build targets run_demo.sh
 #                      builds), one a line, and exit
 # Needs multicast on loopback: scripts/setup_multicast.sh (root) sets it up and says why.
@@ -28,9 +31,9 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 # Every program run below as "$bin/NAME": the one list (run_demo.sh builds it; fleet_test checks
 # it against the script's commands).
-programs=(fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval fleetmap-record)
+programs=(fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval fleetmap-record fleetmap-keygen)
 scenario=$root/tools/sim/worlds/livinglab/fleet.yaml
-speed=4 duration="" out=out port=7667 bin=$root/build/bin name=demo loss=0
+speed=4 duration="" out=out port=7667 bin=$root/build/bin name=demo loss=0 key=0
 while [ $# -gt 0 ]; do
   case $1 in
     --scenario) scenario=${2:?}; shift 2 ;;
@@ -42,7 +45,8 @@ while [ $# -gt 0 ]; do
     --name) name=${2:?}; shift 2 ;;
     --loss) loss=${2:?}; shift 2 ;;
     --programs) printf '%s\n' "${programs[@]}"; exit 0 ;;
-    -h | --help) sed -n '2,26p' "$0"; exit 0 ;;
+    --key) key=1; shift ;;
+    -h | --help) sed -n '2,29p' "$0"; exit 0 ;;
     *) echo "fleet_run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -97,6 +101,12 @@ mkdir -p "$out"
 rm -rf "$out/logs" "$out/maps" "$out/state"
 mkdir -p "$out/logs" "$out/maps" "$out/state"
 static_map=$("$bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | sed -n 's/^map //p')
+keyed=()  # --key-file for every process, with --key
+if ((key)); then
+  rm -f "$out/fleet.key"
+  "$bin/fleetmap-keygen" "$out/fleet.key" >/dev/null
+  keyed=(--key-file "$out/fleet.key")
+fi
 mapfile -t vehicles < <("$bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | grep -v '^map ')
 
 declare -a loggers agents
@@ -117,7 +127,7 @@ for group in sensor uplink downlink; do
   loggers+=($!)
 done
 "${run[@]}" "$bin/fleetmap-aggregator" --map "$static_map" --state-dir "$out/state/aggregator" \
-  --uplink-url "$uplink" --downlink-url "$downlink" --final-map "$out/maps/aggregator.yaml" \
+  "${keyed[@]}" --uplink-url "$uplink" --downlink-url "$downlink" --final-map "$out/maps/aggregator.yaml" \
   >"$out/logs/aggregator.txt" 2>&1 &
 aggregator=$!
 vehicle_maps=()
@@ -126,7 +136,7 @@ for line in "${vehicles[@]}"; do
   "${run[@]}" "$bin/fleetmap-agent" --vehicle-id "$id" --map "$static_map" --initial-pose "$x,$y,$theta" \
     --scanner-mount "$mx,$my,$mtheta" \
     --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
-    --state-dir "$out/state/$id" --final-map "$out/maps/$id.yaml" --quiet \
+    --state-dir "$out/state/$id" --final-map "$out/maps/$id.yaml" --quiet "${keyed[@]}" \
     >"$out/logs/agent_$id.txt" 2>&1 &
   agents+=($!)
   vehicle_maps+=(--vehicle-map "$id=$out/maps/$id.yaml")
@@ -159,12 +169,12 @@ echo "fleet: stopped; $live"
 echo "fleet: scoring the recorded run"
 "$bin/fleetmap-eval" --scenario "$scenario" --lcm-log "$out/logs/sensor.lcmlog" \
   --lcm-log "$out/logs/uplink.lcmlog" --lcm-log "$out/logs/downlink.lcmlog" \
-  --epoch "$epoch" --duration "$duration" "${vehicle_maps[@]}" --out "$out" --name "$name" \
-  --quiet >"$out/figures.txt"
+  --epoch "$epoch" --duration "$duration" "${vehicle_maps[@]}" "${keyed[@]}" --out "$out" \
+  --name "$name" --quiet >"$out/figures.txt"
 [ -z "$netns" ] || cat "$out/logs/loss.txt" >>"$out/figures.txt"
 
 echo "fleet: replaying the uplink log into a fresh aggregator"
-"$bin/fleetmap-aggregator" --map "$static_map" --replay "$out/logs/uplink.lcmlog" \
+"$bin/fleetmap-aggregator" --map "$static_map" --replay "$out/logs/uplink.lcmlog" "${keyed[@]}" \
   --final-map "$out/maps/replay.yaml" --quiet >"$out/logs/replay.txt" 2>&1
 replayed=$(grep '^aggregator: version' "$out/logs/replay.txt" | tail -1 || true)
 if [ -n "$live" ] && [ "${live%% merged*}" = "${replayed%% merged*}" ]; then

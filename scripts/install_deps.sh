@@ -19,6 +19,7 @@ packages=(
   gnuplot-nox  # the LAN experiments' plots (tools/lan, docs/lan_experiments.md)
   dpkg-dev fakeroot file systemd  # Debian packages: dpkg-shlibdeps, systemd-analyze (docs/deployment.md)
   help2man lintian  # the packages' manual pages and their check (tests/deploy/package_test.sh)
+  jq  # the figures as JSON (scripts/figures_json.sh: out/bench.json, out/eval.json)
   "$@"
 )
 

@@ -9,9 +9,8 @@
 #include <vector>
 
 #include "core/codecs/map_render.h"
-#include "core/number_text.h"
+#include "core/command_line.h"
 #include "core/scan_inserter.h"
-#include "core/version.h"
 #include "tools/carmen/carmen_log.h"
 #include "tools/carmen/relation_audit.h"
 #include "tools/carmen/relations.h"
@@ -21,55 +20,12 @@ namespace {
 
 using namespace fleetmap;
 
-constexpr const char* kUsage = R"(usage: fleetmap-carmen-eval --carmen LOG --relations REL [options]
-
-Runs the scan matcher of the temporary-map builder over every laser scan of a CARMEN log
+constexpr char kDescription[] =
+    R"(Runs the scan matcher of the temporary-map builder over every laser scan of a CARMEN log
 (FLASER, ROBOTLASER1), with the log's odometry as the prior, and scores the trajectory with the
 benchmark relations (Kuemmerle et al. 2009): mean absolute translational and rotational error
 over all relations and over those spanning at most --window seconds. The log's raw odometry is
-scored the same way as the baseline. Prints `real.<name>.<...> value unit` lines.
-options:
-  --name NAME          name in the figure lines                   [the log's file stem]
-  --window S           span of the windowed figures, seconds      [60]
-  --map-lifetime S     start a fresh map every S seconds, chained like temporary maps;
-                       0: one map for the whole log               [0]
-  --map-size M         side of each map, metres                   [120]
-  --resolution M       finest cell size, metres                   [0.05]
-  --levels N           resolution levels                          [3]
-  --png FILE           draw the log's map at the estimated poses
-  --trajectory FILE    score the trajectory in FILE (lines `t x y theta`, e.g. another SLAM
-                       system's) with the same relations instead of running our matcher;
-                       with --png, FILE must hold one pose per scan
-  --save-trajectory FILE
-                       write our estimated pose at every scan to FILE, in the lines
-                       --trajectory reads
-  --interpolate-odometry 0|1
-                       odometry at each scan's time from the ODOM lines, rather than the
-                       last ODOM before it (what FLASER lines carry)  [0]
-  --scan-latency S     each scan was taken S seconds before its time stamp: odometry
-                       interpolated at stamp - S (implies --interpolate-odometry 1)  [0]
-  --max-range M        returns farther away are not used          [25]
-  --prior-xy M, --prior-theta RAD, --sigma-map P
-                       odometry prior (base) and map noise       [0.005, 0.005, 0.25]
-  --coarse-iterations N, --fine-iterations N
-                       Gauss-Newton steps per coarser level / on the finest  [3, 5]
-  --heading-search-base RAD, --heading-search F
-                       heading searched within +-(RAD + F x odometry rotation) before
-                       Gauss-Newton; 0 and 0: no search            [0.035, 1.0]
-  --update-distance M, --update-angle RAD
-                       travel between map insertions              [0.1, 0.1]
-  --rest-distance M, --rest-angle RAD
-                       odometry steps this small are standing still: the scan is not
-                       matched; 0 and 0: match every scan         [0.0001, 0.0001]
-  --audit 0|1          also check the reference itself, within the window: the share of
-                       relations equal to the log's odometry (as read) and, of the others,
-                       whose difference from it is a whole number of 5 cm steps (aces': a
-                       search grid's); and how well each relation's two scans overlap placed
-                       by the reference and by our estimate (or --trajectory's): the mean
-                       distance of the second scan's end points to the first's nearest,
-                       capped at 0.2 m                               [0]
-  -h, --help           this text
-)";
+scored the same way as the baseline. Prints `real.<name>.<...> value unit` lines.)";
 
 struct Args {
   std::string carmen, relations, name, png, trajectory, save_trajectory;
@@ -80,72 +36,80 @@ struct Args {
   vehicle_agent::LocalMapperOptions mapper;  // matcher and update settings
 };
 
-bool Parse(int argc, char** argv, Args& a) {
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (i + 1 >= argc) return false;
-      const std::string v = argv[++i];
-      if (arg == "--carmen")
-        a.carmen = v;
-      else if (arg == "--relations")
-        a.relations = v;
-      else if (arg == "--name")
-        a.name = v;
-      else if (arg == "--png")
-        a.png = v;
-      else if (arg == "--trajectory")
-        a.trajectory = v;
-      else if (arg == "--save-trajectory")
-        a.save_trajectory = v;
-      else if (arg == "--window")
-        a.window_s = core::NumberOrThrow(v, arg);
-      else if (arg == "--map-lifetime")
-        a.lifetime_s = core::NumberOrThrow(v, arg);
-      else if (arg == "--map-size")
-        a.size_m = core::NumberOrThrow(v, arg);
-      else if (arg == "--resolution")
-        a.resolution_m = core::NumberOrThrow(v, arg);
-      else if (arg == "--levels")
-        a.levels = core::IntegerOrThrow(v, arg);
-      else if (arg == "--interpolate-odometry")
-        a.interpolate_odometry = v != "0";
-      else if (arg == "--audit")
-        a.audit = v != "0";
-      else if (arg == "--scan-latency")
-        a.scan_latency_s = core::NumberOrThrow(v, arg), a.interpolate_odometry = true;
-      else if (arg == "--max-range")
-        a.mapper.max_range_m = core::NumberOrThrow(v, arg);
-      else if (arg == "--prior-xy")
-        a.mapper.matcher.prior_sigma_xy_m = core::NumberOrThrow(v, arg);
-      else if (arg == "--prior-theta")
-        a.mapper.matcher.prior_sigma_theta_rad = core::NumberOrThrow(v, arg);
-      else if (arg == "--sigma-map")
-        a.mapper.matcher.sigma_map = core::NumberOrThrow(v, arg);
-      else if (arg == "--heading-search")
-        a.mapper.matcher.heading_search_per_rad = core::NumberOrThrow(v, arg);
-      else if (arg == "--coarse-iterations")
-        a.mapper.matcher.coarse_iterations = core::IntegerOrThrow(v, arg);
-      else if (arg == "--fine-iterations")
-        a.mapper.matcher.fine_iterations = core::IntegerOrThrow(v, arg);
-      else if (arg == "--heading-search-base")
-        a.mapper.matcher.heading_search_base_rad = core::NumberOrThrow(v, arg);
-      else if (arg == "--update-distance")
-        a.mapper.update_min_distance_m = core::NumberOrThrow(v, arg);
-      else if (arg == "--update-angle")
-        a.mapper.update_min_angle_rad = core::NumberOrThrow(v, arg);
-      else if (arg == "--rest-distance")
-        a.mapper.rest_max_translation_m = core::NumberOrThrow(v, arg);
-      else if (arg == "--rest-angle")
-        a.mapper.rest_max_rotation_rad = core::NumberOrThrow(v, arg);
-      else
-        return false;
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", e.what());
-    return false;
-  }
-  return !a.carmen.empty() && !a.relations.empty();
+// A number flag with its default shown in --help.
+CLI::Option* Number(CLI::App& app, const std::string& name, double& value,
+                    const std::string& help) {
+  return app.add_option(name, value, help)->check(fleetmap::core::Finite())->capture_default_str();
+}
+
+void DefineFlags(CLI::App& app, Args& a) {
+  app.description(kDescription);
+  core::AddVersionFlag(app);
+  app.add_option("--carmen", a.carmen, "the CARMEN log")->required()->type_name("LOG");
+  app.add_option("--relations", a.relations, "the benchmark's relations")
+      ->required()
+      ->type_name("REL");
+  app.add_option("--name", a.name, "name in the figure lines [the log's file stem]");
+  Number(app, "--window", a.window_s, "span of the windowed figures, seconds")
+      ->check(core::Positive());
+  Number(app, "--map-lifetime", a.lifetime_s,
+         "start a fresh map every S seconds, chained like temporary maps; 0: one map for the "
+         "whole log")
+      ->check(core::NotNegative());
+  Number(app, "--map-size", a.size_m, "side of each map, metres");
+  Number(app, "--resolution", a.resolution_m, "finest cell size, metres");
+  app.add_option("--levels", a.levels, "resolution levels")->capture_default_str();
+  app.add_option("--png", a.png, "draw the log's map at the estimated poses")->type_name("FILE");
+  app.add_option("--trajectory", a.trajectory,
+                 "score the trajectory in FILE (lines `t x y theta`, e.g. another SLAM "
+                 "system's) with the same relations instead of running our matcher; with --png, "
+                 "FILE must hold one pose per scan")
+      ->type_name("FILE");
+  app.add_option("--save-trajectory", a.save_trajectory,
+                 "write our estimated pose at every scan to FILE, in the lines --trajectory "
+                 "reads")
+      ->type_name("FILE");
+  app.add_option("--interpolate-odometry", a.interpolate_odometry,
+                 "odometry at each scan's time from the ODOM lines, rather than the last ODOM "
+                 "before it (what FLASER lines carry)")
+      ->type_name("0|1")
+      ->capture_default_str();
+  Number(app, "--scan-latency", a.scan_latency_s,
+         "each scan was taken S seconds before its time stamp: odometry interpolated at stamp "
+         "- S (implies --interpolate-odometry 1)");
+  Number(app, "--max-range", a.mapper.max_range_m, "returns farther away are not used");
+  Number(app, "--prior-xy", a.mapper.matcher.prior_sigma_xy_m, "odometry prior (base), metres");
+  Number(app, "--prior-theta", a.mapper.matcher.prior_sigma_theta_rad,
+         "odometry prior (base), radians");
+  Number(app, "--sigma-map", a.mapper.matcher.sigma_map, "map noise");
+  app.add_option("--coarse-iterations", a.mapper.matcher.coarse_iterations,
+                 "Gauss-Newton steps per coarser level")
+      ->capture_default_str();
+  app.add_option("--fine-iterations", a.mapper.matcher.fine_iterations,
+                 "Gauss-Newton steps on the finest level")
+      ->capture_default_str();
+  Number(app, "--heading-search-base", a.mapper.matcher.heading_search_base_rad,
+         "heading searched within +-(RAD + F x odometry rotation) before Gauss-Newton; 0 and "
+         "0: no search");
+  Number(app, "--heading-search", a.mapper.matcher.heading_search_per_rad,
+         "F of --heading-search-base");
+  Number(app, "--update-distance", a.mapper.update_min_distance_m,
+         "travel between map insertions, metres");
+  Number(app, "--update-angle", a.mapper.update_min_angle_rad,
+         "turn between map insertions, radians");
+  Number(app, "--rest-distance", a.mapper.rest_max_translation_m,
+         "odometry steps this small are standing still: the scan is not matched; 0 and 0: "
+         "match every scan");
+  Number(app, "--rest-angle", a.mapper.rest_max_rotation_rad, "radians of --rest-distance");
+  app.add_option("--audit", a.audit,
+                 "also check the reference itself, within the window: the share of relations "
+                 "equal to the log's odometry (as read) and, of the others, whose difference "
+                 "from it is a whole number of 5 cm steps (aces': a search grid's); and how well "
+                 "each relation's two scans overlap placed by the reference and by our estimate "
+                 "(or --trajectory's): the mean distance of the second scan's end points to the "
+                 "first's nearest, capped at 0.2 m")
+      ->type_name("0|1")
+      ->capture_default_str();
 }
 
 std::string Stem(const std::string& path) {
@@ -279,18 +243,13 @@ bool PrintAudit(const std::string& name, const std::string& win, const carmen::C
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-carmen-eval")) return 0;
-  for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
-      return std::fputs(kUsage, stdout), 0;
   Args args;
-  if (!Parse(argc, argv, args)) return std::fputs(kUsage, stderr), 2;
+  CLI::App app("", "fleetmap-carmen-eval");
+  DefineFlags(app, args);
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
+  if (app.count("--scan-latency") > 0) args.interpolate_odometry = true;
   if (const core::Status s = MapperOptions(args).Validate(); !s.ok())
     return std::fprintf(stderr, "fleetmap-carmen-eval: %s\n", s.ToString().c_str()), 2;
-  if (!(args.window_s > 0) || !(args.lifetime_s >= 0 && std::isfinite(args.lifetime_s)))
-    return std::fputs("fleetmap-carmen-eval: --window needs seconds > 0, --map-lifetime >= 0\n",
-                      stderr),
-           2;
   const std::string name = args.name.empty() ? Stem(args.carmen) : args.name;
   auto log = carmen::ReadCarmenLog(args.carmen);
   if (!log.ok())

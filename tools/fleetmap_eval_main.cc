@@ -10,10 +10,9 @@
 #include "aggregator/node/node_config.h"
 #include "auth/key.h"
 #include "core/codecs/map_render.h"
+#include "core/command_line.h"
 #include "core/file_io.h"
 #include "core/map_io.h"
-#include "core/number_text.h"
-#include "core/version.h"
 #include "tools/eval/agents_pipeline.h"
 #include "tools/eval/eval_figures.h"
 #include "tools/eval/pipeline.h"
@@ -24,93 +23,101 @@ namespace {
 
 using namespace fleetmap;
 
-constexpr const char* kUsage = R"(usage: fleetmap-eval --scenario SCENARIO.yaml [options]
-
-Runs the scenario through a pipeline, in-process and faster than real time, scores the run
+constexpr char kDescription[] =
+    R"(Runs the scenario through a pipeline, in-process and faster than real time, scores the run
 against the simulator's ground truth and writes, into the output folder:
   report.json (stable keys, docs/evaluation.md), report.md, current_map.{yaml,pgm,png},
   map_overlay.png (the map against the truth), divergence.png (d(t), w_avg, w_fast, w_slow),
   paths.png (the vehicles' paths)
 and prints the figures as `eval.<name>.<figure> value unit` lines.
+Pipelines: oracle merges exactly what the scanners saw (the reference); agents is the real
+system in-process (each vehicle's on-board pipeline: localization, divergence, temporary
+maps; and the aggregator); truthmaps: temporary maps a perfect vehicle builds at its true
+poses, anchored with a random error, aligned and merged by the aggregator.)";
 
-options:
-  --scenario FILE   scenario YAML (required)
-  --map FILE        static map (map_server YAML) instead of the one the scenario names
-  --pipeline NAME   oracle: merges exactly what the scanners saw (the reference)   [oracle]
-                    agents: the real system in-process: each vehicle's on-board pipeline
-                    (localization, divergence, temporary maps) and the aggregator
-                    truthmaps: temporary maps a perfect vehicle builds at its true poses,
-                    anchored with a random error, aligned and merged by the aggregator
-  --aggregator-config FILE  agents, truthmaps: the aggregator's options from a
-                    fleetmap-aggregator configuration (its aggregator: section; the flags
-                    below override it where given)       [the defaults of docs/aggregator.md]
-  --align-mode MODE alignment: ours (dominant directions) or paper (the paper's sequence) [ours]
-  --anchor-error-m M      truthmaps: largest anchor translation error, metres     [0.3]
-  --anchor-error-deg D    truthmaps: largest anchor rotation error, degrees       [3]
-  --confirmations N       temporary maps of different times that must see an
-                          obstacle before it is added: 1 (the paper) or 2         [2]
-  --seed N                truthmaps: added to the scenario's seed for the anchor errors [0]
-  --lcm-log FILE     score a recorded fleet run instead of running a pipeline: the
-                    lcm-logger logs of its sensor, uplink and downlink groups (repeat the
-                    flag); adds fleet.* keys (bytes per channel per simulated second, change
-                    latency in wall-clock seconds) to report.json
-  --epoch S         recorded run: the epoch fleetmap-sim added to simulated time  [0]
-  --duration S      recorded run: the simulated seconds it ran  [the scenario's duration]
-  --vehicle-map ID=FILE  recorded run: a vehicle's final map (fleetmap-agent --final-map),
-                    compared cell by cell with the fleet's final map (repeat the flag)
-  --key-file FILE   recorded run: the fleet's key; a message counts only if its MAC is right
-                    [none: a message counts if it names its channel's owner]
-  --aggregator-name NAME  recorded run: the aggregator's process name, the only sender
-                    whose word on the downlink counts                    [aggregator]
-  --out DIR         output folder                                 [out/eval/<scenario name>]
-  --name NAME       name used in the figure lines                 [the scenario's name]
-  --quiet           no progress lines on stderr
-  -h, --help        this text
-Exit status: 0 on success, 1 when the scenario, the map or an output cannot be used, 2 on
-usage errors.
-)";
+constexpr char kFooter[] =
+    R"(Exit status: 0 on success, 1 when the scenario, the map or an output cannot be used, 2 on
+usage errors.)";
 
 struct Args {
   std::string scenario, map, pipeline = "oracle", out, name, align_mode, aggregator_config;
-  std::string anchor_error_m = "0.3", anchor_error_deg = "3", confirmations, seed = "0";
+  double anchor_error_m = 0.3, anchor_error_deg = 3;
+  int confirmations = 0;  // 0: the aggregator's setting
+  uint32_t seed = 0;
   bool quiet = false;
   std::vector<std::string> lcm_logs, vehicle_maps;
-  std::string epoch = "0", duration;
+  double epoch_s = 0, duration_s = 0;  // duration 0: the scenario's
   std::string key_file, aggregator_name = "aggregator";
 };
 
-bool Parse(int argc, char** argv, Args& a) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&](std::string& dst) {
-      if (i + 1 >= argc) return false;
-      dst = argv[++i];
-      return true;
-    };
-    if (arg == "--scenario"            ? !value(a.scenario)
-        : arg == "--map"               ? !value(a.map)
-        : arg == "--pipeline"          ? !value(a.pipeline)
-        : arg == "--out"               ? !value(a.out)
-        : arg == "--name"              ? !value(a.name)
-        : arg == "--align-mode"        ? !value(a.align_mode)
-        : arg == "--aggregator-config" ? !value(a.aggregator_config)
-        : arg == "--anchor-error-m"    ? !value(a.anchor_error_m)
-        : arg == "--anchor-error-deg"  ? !value(a.anchor_error_deg)
-        : arg == "--confirmations"     ? !value(a.confirmations)
-        : arg == "--seed"              ? !value(a.seed)
-        : arg == "--epoch"             ? !value(a.epoch)
-        : arg == "--duration"          ? !value(a.duration)
-        : arg == "--key-file"          ? !value(a.key_file)
-        : arg == "--aggregator-name"   ? !value(a.aggregator_name)
-        : arg == "--lcm-log"           ? (a.lcm_logs.emplace_back(), !value(a.lcm_logs.back()))
-        : arg == "--vehicle-map" ? (a.vehicle_maps.emplace_back(), !value(a.vehicle_maps.back()))
-        : arg == "--quiet"       ? (a.quiet = true, false)
-                                 : true) {
-      std::fprintf(stderr, "fleetmap-eval: bad or incomplete argument '%s'\n", arg.c_str());
-      return false;
-    }
-  }
-  return !a.scenario.empty();
+void DefineFlags(CLI::App& app, Args& a) {
+  app.description(kDescription);
+  app.footer(kFooter);
+  core::AddVersionFlag(app);
+  app.add_option("--scenario", a.scenario, "scenario YAML")->required()->type_name("FILE");
+  app.add_option("--map", a.map,
+                 "static map (map_server YAML) instead of the one the scenario "
+                 "names")
+      ->type_name("FILE");
+  app.add_option("--pipeline", a.pipeline, "oracle, agents or truthmaps")
+      ->check(CLI::IsMember({"oracle", "truthmaps", "agents"}))
+      ->capture_default_str();
+  app.add_option("--aggregator-config", a.aggregator_config,
+                 "agents, truthmaps: the aggregator's options from a fleetmap-aggregator "
+                 "configuration (its aggregator: section; the flags below override it where "
+                 "given) [the defaults of docs/aggregator.md]")
+      ->type_name("FILE");
+  app.add_option("--align-mode", a.align_mode,
+                 "alignment: ours (dominant directions) or paper (the paper's sequence) [ours]")
+      ->type_name("MODE");
+  app.add_option("--anchor-error-m", a.anchor_error_m,
+                 "truthmaps: largest anchor translation error, metres")
+      ->check(core::NotNegative() & CLI::Range(0.0, 1e3))
+      ->capture_default_str();
+  app.add_option("--anchor-error-deg", a.anchor_error_deg,
+                 "truthmaps: largest anchor rotation error, degrees")
+      ->check(core::NotNegative() & CLI::Range(0.0, 180.0))
+      ->capture_default_str();
+  app.add_option("--confirmations", a.confirmations,
+                 "temporary maps of different times that must see an obstacle before it is "
+                 "added: 1 (the paper) or 2 [2]")
+      ->check(CLI::IsMember({1, 2}));
+  app.add_option("--seed", a.seed,
+                 "truthmaps: added to the scenario's seed for the anchor "
+                 "errors")
+      ->check(core::WholeNumber())
+      ->capture_default_str();
+  app.add_option("--lcm-log", a.lcm_logs,
+                 "score a recorded fleet run instead of running a pipeline: the lcm-logger "
+                 "logs of its sensor, uplink and downlink groups (repeat the flag); adds fleet.* "
+                 "keys (bytes per channel per simulated second, change latency in wall-clock "
+                 "seconds) to report.json")
+      ->type_name("FILE")
+      ->allow_extra_args(false);  // one file per flag; the flag repeats
+  app.add_option("--epoch", a.epoch_s,
+                 "recorded run: the epoch fleetmap-sim added to simulated "
+                 "time")
+      ->check(core::Finite())
+      ->capture_default_str();
+  app.add_option("--duration", a.duration_s,
+                 "recorded run: the simulated seconds it ran [the scenario's duration]")
+      ->check(core::Positive());
+  app.add_option("--vehicle-map", a.vehicle_maps,
+                 "recorded run: a vehicle's final map (fleetmap-agent --final-map), compared "
+                 "cell by cell with the fleet's final map (repeat the flag)")
+      ->type_name("ID=FILE")
+      ->allow_extra_args(false);  // one file per flag; the flag repeats
+  app.add_option("--key-file", a.key_file,
+                 "recorded run: the fleet's key; a message counts only if its MAC is right "
+                 "[none: a message counts if it names its channel's owner]")
+      ->type_name("FILE");
+  app.add_option("--aggregator-name", a.aggregator_name,
+                 "recorded run: the aggregator's process name, the only sender whose word on "
+                 "the downlink counts")
+      ->capture_default_str();
+  app.add_option("--out", a.out, "output folder [out/eval/<scenario name>]")->type_name("DIR");
+  app.add_option("--name", a.name, "name used in the figure lines [the scenario's name]");
+  app.add_flag("--quiet", a.quiet, "no progress lines on stderr");
 }
 
 void Progress(double t_s) { std::fprintf(stderr, "  simulated %.0f s\n", t_s); }
@@ -144,27 +151,6 @@ int Fail(const core::Status& s) {
   return 1;
 }
 
-// A number from the command line (core::ParseNumber), or NaN: the checks below name the flag.
-double Number(const std::string& text) {
-  const core::Result<double> v = core::ParseNumber(text, "");
-  return v.ok() ? *v : std::nan("");
-}
-
-// The numeric options, whichever pipeline uses them: a value out of range is a usage error,
-// never silently replaced by a default.
-core::Status CheckNumbers(const Args& args) {
-  const double anchor_m = Number(args.anchor_error_m), anchor_deg = Number(args.anchor_error_deg);
-  if (!(anchor_m >= 0 && anchor_m < 1e3) || !(anchor_deg >= 0 && anchor_deg <= 180))
-    return core::InvalidArgument("--anchor-error-m needs metres >= 0, --anchor-error-deg 0..180");
-  const double confirmations = Number(args.confirmations);
-  if (!args.confirmations.empty() && confirmations != 1.0 && confirmations != 2.0)
-    return core::InvalidArgument("--confirmations takes 1 or 2");
-  const double seed = Number(args.seed);
-  if (!(seed >= 0 && seed < 4e9 && seed == std::floor(seed)))
-    return core::InvalidArgument("--seed needs a whole number >= 0");
-  return core::OkStatus();
-}
-
 // The aggregator's options: the configuration file's, if one is given, with the flags that
 // were given on top.
 core::Result<aggregator::AggregatorOptions> AggregatorOptionsFor(const Args& args) {
@@ -178,8 +164,7 @@ core::Result<aggregator::AggregatorOptions> AggregatorOptionsFor(const Args& arg
     FLEETMAP_ASSIGN_OR_RETURN(options.alignment.mode,
                               aggregator::ParseAlignmentMode(args.align_mode));
   }
-  if (!args.confirmations.empty())
-    options.merge.confirmations = Number(args.confirmations) == 1.0 ? 1 : 2;
+  if (args.confirmations != 0) options.merge.confirmations = args.confirmations;
   return options;
 }
 
@@ -196,9 +181,9 @@ core::Result<std::unique_ptr<eval::Pipeline>> MakePipeline(const Args& args,
   }
   eval::TruthTempMapOptions options;
   options.aggregator = *aggregator;
-  options.anchor_error_max_m = Number(args.anchor_error_m);
-  options.anchor_error_max_rad = Number(args.anchor_error_deg) * M_PI / 180.0;
-  options.seed = static_cast<uint32_t>(Number(args.seed));
+  options.anchor_error_max_m = args.anchor_error_m;
+  options.anchor_error_max_rad = args.anchor_error_deg * M_PI / 180.0;
+  options.seed = args.seed;
   return eval::MakeTruthTempMapPipeline(world, options);
 }
 
@@ -287,15 +272,14 @@ core::Result<int> CountVehiclesHoldingMap(const std::vector<std::string>& vehicl
 int RunRecorded(const Args& args, const sim::World& world, const std::string& name,
                 const std::string& out) {
   evallog::RecordedRunOptions options;
-  options.epoch_s = Number(args.epoch);
+  options.epoch_s = args.epoch_s;
   options.aggregator_sender = args.aggregator_name;
   if (!args.key_file.empty()) {
     auto key = auth::ReadKeyFile(args.key_file);
     if (!key.ok()) return Fail(key.status());
     options.fleet_key = *key;
   }
-  const double duration =
-      args.duration.empty() ? world.scenario().duration_s : Number(args.duration);
+  const double duration = args.duration_s > 0 ? args.duration_s : world.scenario().duration_s;
   options.duration_s = duration;
   if (!std::isfinite(options.epoch_s) || !(duration > 0)) {
     std::fprintf(stderr, "fleetmap-eval: --epoch and --duration take numbers (duration > 0)\n");
@@ -325,28 +309,10 @@ int RunRecorded(const Args& args, const sim::World& world, const std::string& na
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-eval")) return 0;
-  for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-  }
   Args args;
-  if (!Parse(argc, argv, args)) {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
-  if (args.pipeline != "oracle" && args.pipeline != "truthmaps" && args.pipeline != "agents") {
-    std::fprintf(stderr,
-                 "fleetmap-eval: unknown pipeline '%s' (known: oracle, truthmaps, agents)\n",
-                 args.pipeline.c_str());
-    return 2;
-  }
-  if (const core::Status s = CheckNumbers(args); !s.ok()) {
-    std::fprintf(stderr, "fleetmap-eval: %s\n", s.ToString().c_str());
-    return 2;
-  }
+  CLI::App app("", "fleetmap-eval");
+  DefineFlags(app, args);
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   auto world = sim::World::Load(args.scenario, args.map);
   if (!world.ok()) return Fail(world.status());
   const std::string name = args.name.empty() ? world->scenario().name : args.name;

@@ -3,10 +3,8 @@
 // recover what a damaged folder still holds.
 // The algorithms are in tools/mapctl (library fleetmap_mapctl); this is files and flags.
 // See --help and docs/operations.md.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,9 +13,8 @@
 #include "aggregator/recovery_marker.h"
 #include "aggregator/state_dir_lock.h"
 #include "core/codecs/map_render.h"
+#include "core/command_line.h"
 #include "core/map_io.h"
-#include "core/number_text.h"
-#include "core/version.h"
 #include "tools/mapctl/map_edits.h"
 #include "tools/mapctl/merge_summary.h"
 #include "tools/mapctl/state_history.h"
@@ -28,61 +25,41 @@ namespace {
 
 using namespace fleetmap;
 
-constexpr const char* kUsage =
-    R"(usage: fleetmap-mapctl [--state-dir DIR] [--map STATIC.yaml] COMMAND [ARGS]
-
-The map's life, from the aggregator's state folder (snapshot.fms + journal.fmj):
-  export OUT.yaml [--at-version V]   the current map (or version V) as map_server YAML + PGM,
-                                  and OUT.png beside it
-  history                         one line per merge: version, time, vehicle, cells added /
-                                  removed, their bounding box in metres
-  rollback VERSION                make VERSION the current map (the aggregator restarts from it)
-  reset-region X0 Y0 X1 Y1        semi-static changes in the box (metres) back to the static map
-  promote --out-map NEW.yaml (--since-version V | --older-than S)
-                                  obstacles standing since version V / for S seconds become
-                                  part of a new static map
-  recover [--dry-run]             after DATA_LOSS at the aggregator's start: keep what can
-                                  still be read, report what is gone
-
-Common flags:
-  --state-dir DIR   the aggregator's state folder (default /var/lib/fleetmap/aggregator)
-  --map FILE        the static map the aggregator runs with, its --map
-                    (default /var/lib/fleetmap/maps/static.yaml)
-  -h, --help        this text; COMMAND --help: the command's own
-  --version         the version
-rollback, reset-region, promote and recover refuse to run while an aggregator holds the
+constexpr char kDescription[] =
+    R"(The map's life, from the aggregator's state folder (snapshot.fms + journal.fmj): export,
+history, rollback, reset a region, promote standing changes, recover. COMMAND --help: the
+command's own help.)";
+constexpr char kFooter[] =
+    R"(rollback, reset-region, promote and recover refuse to run while an aggregator holds the
 folder's lock (stop it first) and keep the old snapshot and journal in DIR/backup/.
-Exit status: 0 done, 1 bad or corrupt data or a locked folder, 2 bad usage.
-)";
+Exit status: 0 done, 1 bad or corrupt data or a locked folder, 2 bad usage.)";
 
-constexpr const char* kExportHelp = R"(usage: fleetmap-mapctl export OUT.yaml [--at-version V]
-Writes the current map, or the map as it was at version V (0: the static map), as
+constexpr char kExportHelp[] =
+    R"(Writes the current map, or the map as it was at version V (0: the static map), as
 map_server YAML + PGM (trinary, as map_saver) and OUT.png (free white, occupied black,
 unknown grey). Reads the state folder only.
 )";
-constexpr const char* kHistoryHelp = R"(usage: fleetmap-mapctl history
-Prints one line per merge, oldest first, after a header:
+constexpr char kHistoryHelp[] = R"(Prints one line per merge, oldest first, after a header:
   version merged_s vehicle tempmap added removed candidates dropped x0_m y0_m x1_m y1_m
 merged_s: the aggregator's clock (Unix seconds live, the log's in a replay); tempmap: the
 vehicle's temporary map number; candidates/dropped: cells seen occupied once / seen free
 again (not in the map yet); the box: every changed cell, map frame, metres ("-": none).
 Merges made by this tool name the vehicle "mapctl". Reads the state folder only.
 )";
-constexpr const char* kRollbackHelp = R"(usage: fleetmap-mapctl rollback VERSION
-Makes the map at VERSION the current map: writes a snapshot holding merges 1..VERSION and
+constexpr char kRollbackHelp[] =
+    R"(Makes the map at VERSION the current map: writes a snapshot holding merges 1..VERSION and
 moves the old snapshot and journal to DIR/backup/. Start the aggregator again afterwards:
 it serves VERSION, and vehicles holding a later version take its keyframe. Refused while an
 aggregator runs on the folder.
 )";
-constexpr const char* kResetHelp = R"(usage: fleetmap-mapctl reset-region X0 Y0 X1 Y1 [--now S]
-Removes every semi-static obstacle and candidate whose cell centre lies in the box (map
+constexpr char kResetHelp[] =
+    R"(Removes every semi-static obstacle and candidate whose cell centre lies in the box (map
 frame, metres, corners in any order): one more version, by vehicle "mapctl", at time S
 (default: now, Unix seconds). Static cells are never touched. Refused while an aggregator
 runs on the folder; the old files go to DIR/backup/.
 )";
-constexpr const char* kPromoteHelp =
-    R"(usage: fleetmap-mapctl promote --out-map NEW.yaml (--since-version V | --older-than S) [--now T]
-Obstacles that stand since version V (added at V or before) and/or for S seconds (added at
+constexpr char kPromoteHelp[] =
+    R"(Obstacles that stand since version V (added at V or before) and/or for S seconds (added at
 T - S or before; T default now, Unix seconds) become occupied cells of a new static map,
 NEW.yaml + NEW.pgm. The history is rewritten without those cells (versions kept) for the
 new map. Then run the aggregator with --map NEW.yaml, and give the vehicles NEW.yaml as
@@ -90,8 +67,8 @@ their --map. Refused while an aggregator runs on the folder; the old files go to
 DIR/backup/.
 )";
 
-constexpr const char* kRecoverHelp = R"(usage: fleetmap-mapctl recover [--dry-run]
-For a state folder the aggregator refuses to start on (DATA_LOSS: a damaged journal or
+constexpr char kRecoverHelp[] =
+    R"(For a state folder the aggregator refuses to start on (DATA_LOSS: a damaged journal or
 snapshot). Keeps what can still be read: the snapshot's merges, then the journal's intact
 records in order up to the first one that is not. Writes that as the new state and moves the
 damaged files to DIR/backup/recover-vN-TIME/ (nothing is deleted). Prints the version
@@ -105,8 +82,13 @@ Exit status: 0 recovered (or nothing to recover), 1 unreadable folder or a write
 struct Args {
   std::string state_dir = "/var/lib/fleetmap/aggregator";
   std::string map = "/var/lib/fleetmap/maps/static.yaml";
-  std::string command;
-  std::vector<std::string> rest;  // the command's arguments, flags included
+  std::string out;                  // export
+  std::optional<uint64_t> version;  // export --at-version, rollback VERSION
+  std::vector<double> box;          // reset-region X0 Y0 X1 Y1, metres
+  std::optional<double> now_s;      // reset-region, promote: Unix seconds [now]
+  std::optional<uint64_t> since_version;
+  std::optional<double> older_than_s;
+  bool dry_run = false;
 };
 
 int Fail(const core::Status& s) {
@@ -117,27 +99,6 @@ int Fail(const core::Status& s) {
 int Usage(const std::string& message) {
   std::fprintf(stderr, "fleetmap-mapctl: %s (see --help)\n", message.c_str());
   return 2;
-}
-
-// Removes `flag` and its value from args; nullopt when absent.
-std::optional<std::string> TakeFlag(std::vector<std::string>& args, const std::string& flag) {
-  for (size_t i = 0; i + 1 < args.size(); ++i) {
-    if (args[i] != flag) continue;
-    std::string value = args[i + 1];
-    args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
-    return value;
-  }
-  return std::nullopt;
-}
-
-bool HasHelp(const std::vector<std::string>& args) {
-  for (const std::string& a : args)
-    if (a == "--help" || a == "-h") return true;
-  return false;
-}
-
-core::Result<uint64_t> ParseVersion(const std::string& text) {
-  return core::ParseCount(text, "version");
 }
 
 double NowS() {
@@ -179,28 +140,19 @@ core::Status SaveWithPicture(const core::OccupancyGrid& grid, const std::string&
 }
 
 int Export(const Args& a) {
-  std::vector<std::string> rest = a.rest;
-  const auto version_text = TakeFlag(rest, "--at-version");
-  if (rest.size() != 1) return Usage("export takes one OUT.yaml");
   auto loaded = Load(a);
   if (!loaded.ok()) return Fail(loaded.status());
-  uint64_t version = loaded->history.version();
-  if (version_text) {
-    auto v = ParseVersion(*version_text);
-    if (!v.ok()) return Usage(v.status().message());
-    version = *v;
-  }
+  const uint64_t version = a.version.value_or(loaded->history.version());
   auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, version);
   if (!store.ok()) return Fail(store.status());
-  const core::Status s = SaveWithPicture(store->current_map(), rest[0]);
+  const core::Status s = SaveWithPicture(store->current_map(), a.out);
   if (!s.ok()) return Fail(s);
   std::printf("exported version %llu to %s (+ .pgm, .png)\n", (unsigned long long)version,
-              rest[0].c_str());
+              a.out.c_str());
   return 0;
 }
 
 int History(const Args& a) {
-  if (!a.rest.empty()) return Usage("history takes no arguments");
   auto loaded = Load(a);
   if (!loaded.ok()) return Fail(loaded.status());
   std::printf("%s\n", mapctl::HistoryHeader().c_str());
@@ -223,38 +175,22 @@ int Replace(const Args& a, const aggregator::CurrentMapStore& store, const std::
 }
 
 int Rollback(const Args& a) {
-  if (a.rest.size() != 1) return Usage("rollback takes one VERSION");
-  auto version = ParseVersion(a.rest[0]);
-  if (!version.ok()) return Usage(version.status().message());
   auto loaded = Load(a);
   if (!loaded.ok()) return Fail(loaded.status());
-  auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, *version);
+  auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, a.version.value());
   if (!store.ok()) return Fail(store.status());
   return Replace(a, *store, "rollback", loaded->history.version());
 }
 
 int ResetRegion(const Args& a) {
-  std::vector<std::string> rest = a.rest;
-  const auto now_text = TakeFlag(rest, "--now");
-  if (rest.size() != 4) return Usage("reset-region takes X0 Y0 X1 Y1 (metres)");
-  double v[4];
-  for (int i = 0; i < 4; ++i) {
-    auto n = core::ParseNumber(rest[static_cast<size_t>(i)], "reset-region");
-    if (!n.ok()) return Usage(n.status().message());
-    v[i] = *n;
-  }
-  double now_s = NowS();
-  if (now_text) {
-    auto n = core::ParseNumber(*now_text, "--now");
-    if (!n.ok()) return Usage(n.status().message());
-    now_s = *n;
-  }
+  const double now_s = a.now_s.value_or(NowS());
   auto loaded = Load(a);
   if (!loaded.ok()) return Fail(loaded.status());
   const uint64_t last = loaded->history.version();
   auto store = mapctl::RebuildStore(loaded->static_map, loaded->history, last);
   if (!store.ok()) return Fail(store.status());
-  const auto commit = mapctl::ResetRegionCommit(*store, {v[0], v[1], v[2], v[3]}, now_s);
+  const auto commit =
+      mapctl::ResetRegionCommit(*store, {a.box[0], a.box[1], a.box[2], a.box[3]}, now_s);
   const auto summary = mapctl::Summarize(commit, loaded->static_map.geometry());
   auto applied = store->Apply(commit);
   if (!applied.ok()) return Fail(applied.status());
@@ -263,15 +199,11 @@ int ResetRegion(const Args& a) {
   return Replace(a, *store, "reset-region", last);
 }
 
-core::Result<mapctl::PromoteOptions> PromoteFlags(std::vector<std::string>& rest) {
+core::Result<mapctl::PromoteOptions> PromoteFlags(const Args& a) {
   mapctl::PromoteOptions o;
-  o.now_s = NowS();
-  if (auto v = TakeFlag(rest, "--since-version"))
-    FLEETMAP_ASSIGN_OR_RETURN(o.since_version, ParseVersion(*v));
-  if (auto v = TakeFlag(rest, "--older-than"))
-    FLEETMAP_ASSIGN_OR_RETURN(o.min_age_s, core::ParseNumber(*v, "--older-than"));
-  if (auto v = TakeFlag(rest, "--now"))
-    FLEETMAP_ASSIGN_OR_RETURN(o.now_s, core::ParseNumber(*v, "--now"));
+  o.now_s = a.now_s.value_or(NowS());
+  o.since_version = a.since_version;
+  o.min_age_s = a.older_than_s;
   FLEETMAP_RETURN_IF_ERROR(o.Validate());
   return o;
 }
@@ -291,12 +223,8 @@ core::Result<aggregator::CurrentMapStore> PromotedStore(const mapctl::Promotion&
 }
 
 int Promote(const Args& a) {
-  std::vector<std::string> rest = a.rest;
-  const auto out_map = TakeFlag(rest, "--out-map");
-  auto options = PromoteFlags(rest);
+  auto options = PromoteFlags(a);
   if (!options.ok()) return Usage(options.status().message());
-  if (!out_map || !rest.empty())
-    return Usage("promote takes --out-map NEW.yaml and its flags only");
   auto loaded = Load(a);
   if (!loaded.ok()) return Fail(loaded.status());
   const uint64_t last = loaded->history.version();
@@ -307,10 +235,10 @@ int Promote(const Args& a) {
     std::printf("promote: no obstacle qualifies; nothing written\n");
     return 0;
   }
-  auto promoted = PromotedStore(mapctl::Promote(*store, cells), *out_map);
+  auto promoted = PromotedStore(mapctl::Promote(*store, cells), a.out);
   if (!promoted.ok()) return Fail(promoted.status());
   std::printf("promote: %zu cells are static in %s; run the aggregator with --map %s\n",
-              cells.size(), out_map->c_str(), out_map->c_str());
+              cells.size(), a.out.c_str(), a.out.c_str());
   return Replace(a, *promoted, "promote", last);
 }
 
@@ -337,11 +265,6 @@ void PrintRecovery(const mapctl::Recovery& r) {
 }
 
 int Recover(const Args& a) {
-  std::vector<std::string> rest = a.rest;
-  const auto flags = std::remove(rest.begin(), rest.end(), std::string("--dry-run"));
-  const bool dry_run = flags != rest.end();
-  rest.erase(flags, rest.end());
-  if (!rest.empty()) return Usage("recover takes --dry-run only");
   auto map = core::LoadMapServerMap(a.map);
   if (!map.ok()) return Fail(map.status());
   auto recovery = mapctl::ReadRecoverableHistory(a.state_dir);
@@ -354,7 +277,7 @@ int Recover(const Args& a) {
   PrintRecovery(*recovery);
   auto store = mapctl::RebuildStore(map->grid, recovery->history, recovery->history.version());
   if (!store.ok()) return Fail(store.status());
-  if (dry_run) {
+  if (a.dry_run) {
     std::printf("recover: --dry-run: nothing written\n");
     return 0;
   }
@@ -374,50 +297,93 @@ int Recover(const Args& a) {
   return 0;
 }
 
-// Splits the common flags from the command and its arguments.
-core::Result<Args> ParseArgs(int argc, char** argv) {
-  Args a;
-  std::vector<std::string> all(argv + 1, argv + argc);
-  if (auto v = TakeFlag(all, "--state-dir")) a.state_dir = *v;
-  if (auto v = TakeFlag(all, "--map")) a.map = *v;
-  if (all.empty()) return core::InvalidArgument("no command");
-  a.command = all[0];
-  a.rest.assign(all.begin() + 1, all.end());
-  return a;
+// Reads a number flag into an optional: set only when given.
+template <typename T>
+CLI::Option* AddOptional(CLI::App* app, const std::string& name, std::optional<T>& value,
+                         const std::string& help) {
+  return app->add_option_function<T>(
+      name, [&value](const T& v) { value = v; }, help);
 }
 
-int Run(const Args& a) {
-  struct Command {
-    const char* name;
-    const char* help;
-    int (*run)(const Args&);
-    bool writes;
-  };
-  static const Command kCommands[] = {
-      {"export", kExportHelp, Export, false},      {"history", kHistoryHelp, History, false},
-      {"rollback", kRollbackHelp, Rollback, true}, {"reset-region", kResetHelp, ResetRegion, true},
-      {"promote", kPromoteHelp, Promote, true},    {"recover", kRecoverHelp, Recover, true}};
-  for (const Command& c : kCommands) {
-    if (a.command != c.name) continue;
-    if (HasHelp(a.rest)) return std::printf("%s", c.help), 0;
+// One subcommand: its help, what it runs, whether it writes the state folder.
+struct Command {
+  CLI::App* app;
+  int (*run)(const Args&);
+  bool writes;
+};
+
+std::vector<Command> DefineCommands(CLI::App& app, Args& a) {
+  app.description(kDescription);
+  app.footer(kFooter);
+  core::AddVersionFlag(app);
+  app.require_subcommand(1);
+  app.fallthrough();  // the common flags also after the command
+  app.add_option("--state-dir", a.state_dir, "the aggregator's state folder")
+      ->type_name("DIR")
+      ->capture_default_str();
+  app.add_option("--map", a.map, "the static map the aggregator runs with, its --map")
+      ->type_name("FILE")
+      ->capture_default_str();
+  CLI::App* export_map =
+      app.add_subcommand("export", "the current map (or version V) as map_server YAML + PGM");
+  export_map->footer(kExportHelp);
+  export_map->add_option("OUT.yaml", a.out, "the map to write")->required();
+  AddOptional(export_map, "--at-version", a.version, "the map as it was at version V")
+      ->type_name("V")
+      ->check(core::WholeNumber());
+  CLI::App* history = app.add_subcommand("history", "one line per merge");
+  history->footer(kHistoryHelp);
+  CLI::App* rollback = app.add_subcommand("rollback", "make VERSION the current map");
+  rollback->footer(kRollbackHelp);
+  AddOptional(rollback, "VERSION", a.version, "the version")
+      ->required()
+      ->check(core::WholeNumber());
+  CLI::App* reset = app.add_subcommand(
+      "reset-region", "semi-static changes in the box (metres) back to the static map");
+  reset->footer(kResetHelp);
+  reset->add_option("X0 Y0 X1 Y1", a.box, "the box, metres")
+      ->expected(4)
+      ->required()
+      ->check(core::Finite());
+  AddOptional(reset, "--now", a.now_s, "the time of the change, Unix seconds [now]")
+      ->check(core::Finite());
+  CLI::App* promote = app.add_subcommand("promote", "obstacles standing long enough become static");
+  promote->footer(kPromoteHelp);
+  promote->add_option("--out-map", a.out, "the new static map")->required()->type_name("NEW.yaml");
+  AddOptional(promote, "--since-version", a.since_version, "standing since version V")
+      ->type_name("V")
+      ->check(core::WholeNumber());
+  AddOptional(promote, "--older-than", a.older_than_s, "standing for S seconds")
+      ->type_name("S")
+      ->check(core::NotNegative());
+  AddOptional(promote, "--now", a.now_s, "Unix seconds [now]")->check(core::Finite());
+  CLI::App* recover = app.add_subcommand("recover",
+                                         "after DATA_LOSS at the aggregator's start: keep what can "
+                                         "still be read, report what is gone");
+  recover->footer(kRecoverHelp);
+  recover->add_flag("--dry-run", a.dry_run, "only print");
+  return {{export_map, Export, false}, {history, History, false}, {rollback, Rollback, true},
+          {reset, ResetRegion, true},  {promote, Promote, true},  {recover, Recover, true}};
+}
+
+int Run(const Args& a, const std::vector<Command>& commands) {
+  for (const Command& c : commands) {
+    if (!c.app->parsed()) continue;
     if (!c.writes) return c.run(a);
     // Held until the new state is written: no aggregator can start on the folder meanwhile.
     auto lock = aggregator::StateDirLock::Acquire(a.state_dir);
     if (!lock.ok()) return Fail(lock.status());
     return c.run(a);
   }
-  return Usage("unknown command '" + a.command + "'");
+  return Usage("no command");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (core::PrintVersionIfAsked(argc, argv, "fleetmap-mapctl")) return 0;
-  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-    std::printf("%s", kUsage);
-    return argc < 2 ? 2 : 0;
-  }
-  auto args = ParseArgs(argc, argv);
-  if (!args.ok()) return Usage(args.status().message());
-  return Run(*args);
+  Args args;
+  CLI::App app("", "fleetmap-mapctl");
+  const std::vector<Command> commands = DefineCommands(app, args);
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
+  return Run(args, commands);
 }

@@ -156,12 +156,12 @@ bool Holds(const std::string& requirement, const std::vector<Figure>& figures, s
     return false;
   }
   const std::string name = requirement.substr(0, at);
-  char* end = nullptr;
-  const double bound = std::strtod(requirement.c_str() + at + 2, &end);
-  if (end == requirement.c_str() + at + 2 || *end != '\0') {
+  const core::Result<double> bound_or = core::ParseNumber(requirement.substr(at + 2), name);
+  if (!bound_or.ok()) {
     why = "the bound is not a number";
     return false;
   }
+  const double bound = *bound_or;
   for (const Figure& f : figures)
     if (f.name == name) {
       const bool ok = requirement[at] == '>' ? f.value >= bound : f.value <= bound;

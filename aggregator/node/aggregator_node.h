@@ -34,7 +34,6 @@
 
 #include "aggregator/aggregator.h"
 #include "aggregator/node/ack_schedule.h"
-#include "aggregator/node/cause_log.h"
 #include "aggregator/node/handled_maps.h"
 #include "aggregator/node/held_maps.h"
 #include "aggregator/node/node_counters.h"

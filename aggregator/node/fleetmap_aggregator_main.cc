@@ -17,92 +17,73 @@
 #include "aggregator/recovery_marker.h"
 #include "auth/key.h"
 #include "core/codecs/map_render.h"
+#include "core/command_line.h"
 #include "core/map_io.h"
-#include "core/number_text.h"
 
 namespace {
 
 using namespace fleetmap;
 using namespace fleetmap::aggregator::node;
 
-constexpr const char* kUsage = R"(usage: fleetmap-aggregator --map STATIC.yaml [options]
-
-Receives temporary maps (TEMPMAP_<vehicle>) and MAP_REQUEST on the uplink, merges accepted
+constexpr char kDescription[] =
+    R"(Receives temporary maps (TEMPMAP_<vehicle>) and MAP_REQUEST on the uplink, merges accepted
 maps into the versioned current map and answers on the downlink: TEMPMAP_ACK, MERGE_REPORT,
-MAP_DELTA, MAP_KEYFRAME, STATUS_aggregator. docs/aggregator_process.md has the details.
-options:
-  --map FILE           static map, map_server YAML + image (required)
-  --config FILE        YAML settings (docs/aggregator_process.md); the flags below override it
-  --state-dir DIR      keep the current map (snapshot + journal) and acknowledged tiles here,
-                       and restore them at start                       [none: memory only]
-  --key-file FILE      the fleet key (docs/security.md): sign what is sent, accept only
-                       messages signed by their channel's owner; the file must be chmod 600
-                                                                        [none: unauthenticated]
-  --uplink-url URL     where vehicles send          [udpm://239.255.76.67:7667?ttl=0]
-  --downlink-url URL   where the aggregator answers [udpm://239.255.76.68:7668?ttl=0]
-  --final-map FILE     at exit, write the current map there (map_server YAML + PGM) and a
-                       PNG picture beside it
-  --duration S         stop after S seconds (live)                      [until a signal]
-  --replay LOG...      instead of listening, feed the uplink messages of these LCM logs in
-                       event-time order, as fast as possible; publishes nothing
-  --quiet              no progress lines
-  -h, --help           this text
-  --version            the version
-Ends with the line "aggregator: version N map_hash HEX merged M rejected R" on stdout (the
+MAP_DELTA, MAP_KEYFRAME, STATUS_aggregator. docs/aggregator_process.md has the details.)";
+
+constexpr char kFooter[] =
+    R"(Ends with the line "aggregator: version N map_hash HEX merged M rejected R" on stdout (the
 same function in live and replay runs). SIGINT/SIGTERM: finishes the message at hand, writes
 a snapshot and the final map, prints that line and exits 0.
 Exit status: 0 done, 1 bad map/config/state or LCM failure, 2 usage.
-Multicast on one host needs a route: run scripts/setup_multicast.sh as root.
-)";
+Multicast on one host needs a route: run scripts/setup_multicast.sh as root.)";
 
 volatile std::sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
 
 struct Args {
   std::string map, config, state_dir, uplink_url, downlink_url, final_map, key_file;
-  double duration_s = -1.0;
+  double duration_s = -1.0;  // below 0: until a signal
   std::vector<std::string> replay;
   bool quiet = false;
 };
 
-bool Parse(int argc, char** argv, Args& a) {
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      const bool has_value = i + 1 < argc;
-      if (arg == "--map" && has_value) {
-        a.map = argv[++i];
-      } else if (arg == "--config" && has_value) {
-        a.config = argv[++i];
-      } else if (arg == "--key-file" && has_value) {
-        a.key_file = argv[++i];
-      } else if (arg == "--state-dir" && has_value) {
-        a.state_dir = argv[++i];
-      } else if (arg == "--uplink-url" && has_value) {
-        a.uplink_url = argv[++i];
-      } else if (arg == "--downlink-url" && has_value) {
-        a.downlink_url = argv[++i];
-      } else if (arg == "--final-map" && has_value) {
-        a.final_map = argv[++i];
-      } else if (arg == "--duration" && has_value) {
-        a.duration_s = core::NumberOrThrow(argv[++i], arg);
-        if (!(a.duration_s >= 0)) throw std::invalid_argument("duration");
-      } else if (arg == "--replay" && has_value) {
-        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
-          a.replay.push_back(argv[++i]);
-      } else if (arg == "--quiet") {
-        a.quiet = true;
-      } else {
-        std::fprintf(stderr, "fleetmap-aggregator: bad or incomplete argument '%s'\n", arg.c_str());
-        return false;
-      }
-    }
-  } catch (const std::exception&) {
-    std::fprintf(stderr, "fleetmap-aggregator: --duration takes a number of seconds >= 0\n");
-    return false;
-  }
-  if (a.map.empty()) std::fprintf(stderr, "fleetmap-aggregator: --map is required\n");
-  return !a.map.empty();
+void DefineFlags(CLI::App& app, Args& a) {
+  app.description(kDescription);
+  app.footer(kFooter);
+  core::AddVersionFlag(app);
+  app.add_option("--map", a.map, "static map, map_server YAML + image")
+      ->required()
+      ->type_name("FILE");
+  app.add_option("--config", a.config,
+                 "YAML settings (docs/aggregator_process.md); the flags below override it")
+      ->type_name("FILE");
+  app.add_option("--state-dir", a.state_dir,
+                 "keep the current map (snapshot + journal) and acknowledged tiles here, and "
+                 "restore them at start [none: memory only]")
+      ->type_name("DIR");
+  app.add_option("--key-file", a.key_file,
+                 "the fleet key (docs/security.md): sign what is sent, accept only messages "
+                 "signed by their channel's owner; the file must be chmod 600 [none: "
+                 "unauthenticated]")
+      ->type_name("FILE");
+  app.add_option("--uplink-url", a.uplink_url,
+                 "where vehicles send [udpm://239.255.76.67:7667?ttl=0]")
+      ->type_name("URL");
+  app.add_option("--downlink-url", a.downlink_url,
+                 "where the aggregator answers [udpm://239.255.76.68:7668?ttl=0]")
+      ->type_name("URL");
+  app.add_option("--final-map", a.final_map,
+                 "at exit, write the current map there (map_server YAML + PGM) and a PNG "
+                 "picture beside it")
+      ->type_name("FILE");
+  app.add_option("--duration", a.duration_s, "stop after S seconds (live) [until a signal]")
+      ->check(core::NotNegative())
+      ->type_name("S");
+  app.add_option("--replay", a.replay,
+                 "instead of listening, feed the uplink messages of these LCM logs in "
+                 "event-time order, as fast as possible; publishes nothing")
+      ->type_name("LOG");
+  app.add_flag("--quiet", a.quiet, "no progress lines");
 }
 
 LogSink StderrLog() {
@@ -281,22 +262,10 @@ int RunLive(const Args& args, const AggregatorProcessConfig& config) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (arg == "--version") {
-      std::printf("fleetmap-aggregator %s\n", FLEETMAP_VERSION);
-      return 0;
-    }
-  }
   Args args;
-  if (!Parse(argc, argv, args)) {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
+  CLI::App app("", "fleetmap-aggregator");
+  DefineFlags(app, args);
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
   auto config = Configure(args);
   if (!config.ok()) {
     std::fprintf(stderr, "fleetmap-aggregator: %s\n", config.status().ToString().c_str());

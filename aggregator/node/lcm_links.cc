@@ -13,39 +13,33 @@ double WallClockS() {
 
 core::Result<std::unique_ptr<LcmLinks>> LcmLinks::Open(const std::string& uplink_url,
                                                        const std::string& downlink_url) {
-  std::unique_ptr<LcmLinks> links(new LcmLinks(uplink_url, downlink_url));
-  for (const auto& [lcm, url] :
-       {std::pair{&links->uplink_, uplink_url}, std::pair{&links->downlink_, downlink_url}}) {
-    if (!lcm->good()) {
-      return core::IoError("cannot open LCM at " + url +
-                           " (no multicast route? on one host run scripts/setup_multicast.sh "
-                           "as root; across hosts check the interface and ttl)");
-    }
-  }
-  return links;
+  // Never one instance for both, even on one URL: the uplink's TEMPMAP_.* would match our own
+  // TEMPMAP_ACK.
+  auto groups =
+      edge::LcmGroups::Open({{Link::kUplink, uplink_url}, {Link::kDownlink, downlink_url}},
+                            /*share_same_url=*/false);
+  if (!groups.ok()) return groups.status();
+  return std::unique_ptr<LcmLinks>(new LcmLinks(std::move(groups).value()));
 }
 
 void LcmLinks::Bind(AggregatorNode* node) {
-  node_ = node;
   // LCM queues at most 30 messages per subscription by default and silently drops the rest:
   // one temporary map is a burst of up to ~100 tiles, and a merge keeps us busy for a while.
   constexpr int kQueueCapacity = 4096;
   for (const char* channel :
        {lcmtypes::kTempMapChannelRegex, lcmtypes::kMapRequestChannel,
         lcmtypes::kCandidatesFreeChannelRegex, lcmtypes::kCandidatesHeldChannelRegex}) {
-    lcm::Subscription* sub = uplink_.subscribe(channel, &LcmLinks::OnUplink, this);
-    if (sub != nullptr) sub->setQueueCapacity(kQueueCapacity);
+    groups_->Subscribe(Link::kUplink, channel, kQueueCapacity,
+                       [node](Link, const std::string& channel, const uint8_t* data, int size) {
+                         node->OnMessage(channel, data, size, WallClockS());
+                       });
   }
-}
-
-void LcmLinks::OnUplink(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-  if (!node_ || rbuf->data_size > static_cast<uint32_t>(INT32_MAX)) return;
-  node_->OnMessage(channel, rbuf->data, static_cast<int>(rbuf->data_size), WallClockS());
 }
 
 int LcmLinks::Poll(int timeout_ms) {
   if (Flush() > 0) timeout_ms = std::min(timeout_ms, 5);  // come back soon to send the rest
-  return uplink_.handleTimeout(timeout_ms);
+  const core::Result<int> handled = groups_->Handle(timeout_ms / 1000.0, /*max_messages=*/1);
+  return handled.ok() ? *handled : -1;
 }
 
 size_t LcmLinks::Flush() {
@@ -53,8 +47,7 @@ size_t LcmLinks::Flush() {
   int sent = 0;
   for (; allowed > 0 && !queue_.empty(); --allowed, ++sent) {
     const Outgoing& m = queue_.front();
-    lcm::LCM& lcm = m.link == Link::kUplink ? uplink_ : downlink_;
-    lcm.publish(m.channel, m.bytes.data(), static_cast<unsigned int>(m.bytes.size()));
+    groups_->Publish(m.link, m.channel, m.bytes);
     queue_.pop_front();
   }
   pacer_.Sent(sent);

@@ -1,17 +1,15 @@
-// The aggregator's two LCM links: it receives on the uplink (TEMPMAP_.*, MAP_REQUEST) and
-// sends on the downlink. Subscriptions are raw: the node decodes inside (lcmtypes::Decode),
-// because LCM's typed subscribe throws out of the handler on malformed data
-// (docs/channels.md, "What LCM needs"). Nothing subscribes on the downlink, so LCM opens no
-// receive socket there and our own messages are not read back.
+// The aggregator's two LCM links on edge::LcmGroups: it receives on the uplink (TEMPMAP_.*,
+// MAP_REQUEST, CANDIDATES_*) and sends on the downlink, paced. Nothing subscribes on the
+// downlink, so LCM opens no receive socket there and our own messages are not read back.
 #pragma once
 
 #include <deque>
-#include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <string>
 
 #include "aggregator/node/aggregator_node.h"
 #include "core/send_pacer.h"
+#include "edge/lcm_groups.h"
 
 namespace fleetmap::aggregator::node {
 
@@ -32,24 +30,19 @@ class LcmLinks : public Publisher {
   // Queues a message; it goes out paced (core/send_pacer.h: a keyframe is a burst of ~100
   // tiles, which slow readers such as lcm-logger would otherwise lose). False when the queue
   // is full (the message is dropped).
-
   bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override;
 
  private:
-  LcmLinks(const std::string& uplink_url, const std::string& downlink_url)
-      : uplink_(uplink_url), downlink_(downlink_url) {}
-  void OnUplink(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  explicit LcmLinks(std::unique_ptr<edge::LcmGroups> groups) : groups_(std::move(groups)) {}
 
   struct Outgoing {
     Link link;
     std::string channel;
     std::vector<uint8_t> bytes;
   };
-  lcm::LCM uplink_;
-  lcm::LCM downlink_;
+  std::unique_ptr<edge::LcmGroups> groups_;
   std::deque<Outgoing> queue_;
   core::SendPacer pacer_;
-  AggregatorNode* node_ = nullptr;
 };
 
 // Seconds since the Unix epoch, the time base of every utime on the wire.

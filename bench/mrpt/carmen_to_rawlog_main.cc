@@ -24,17 +24,16 @@
 #include <exception>
 #include <string>
 
-#include "core/version.h"
+#include "core/command_line.h"
 #include "tools/carmen/carmen_log.h"
 
 namespace {
 
 using namespace fleetmap;
 
-constexpr const char* kUsage =
-    "usage: fleetmap-bench-carmen2rawlog LOG RAWLOG STAMPS\n"
+constexpr char kDescription[] =
     "Writes the CARMEN log LOG as an MRPT rawlog (actions and sensory frames, gzip) with the\n"
-    "log's time stamps, and STAMPS: the time stamp of each step, one a line.\n";
+    "log's time stamps, and STAMPS: the time stamp of each step, one a line.";
 
 mrpt::poses::CPose2D ToMrpt(const core::Pose2& p) {
   return mrpt::poses::CPose2D(p.x_m, p.y_m, p.theta_rad);
@@ -67,15 +66,21 @@ mrpt::obs::CObservation2DRangeScan::Ptr ToMrpt(const carmen::LaserRecord& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (fleetmap::core::PrintVersionIfAsked(argc, argv, "fleetmap-bench-carmen2rawlog")) return 0;
-  if (argc != 4) return std::fputs(kUsage, argc == 2 ? stdout : stderr), argc == 2 ? 0 : 2;
-  auto log = carmen::ReadCarmenLog(argv[1]);
+  std::string log_path, rawlog_path, stamps_path;
+  CLI::App app(kDescription, "fleetmap-bench-carmen2rawlog");
+  core::AddVersionFlag(app);
+  app.add_option("LOG", log_path, "the CARMEN log")->required();
+  app.add_option("RAWLOG", rawlog_path, "the MRPT rawlog to write")->required();
+  app.add_option("STAMPS", stamps_path, "the time stamps to write")->required();
+  if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
+  auto log = carmen::ReadCarmenLog(log_path);
   if (!log.ok())
     return std::fprintf(stderr, "carmen2rawlog: %s\n", log.status().ToString().c_str()), 1;
-  FILE* stamps = std::fopen(argv[3], "w");
-  if (!stamps) return std::fprintf(stderr, "carmen2rawlog: %s: cannot write\n", argv[3]), 1;
+  FILE* stamps = std::fopen(stamps_path.c_str(), "w");
+  if (!stamps)
+    return std::fprintf(stderr, "carmen2rawlog: %s: cannot write\n", stamps_path.c_str()), 1;
   try {
-    mrpt::io::CFileGZOutputStream out(argv[2]);
+    mrpt::io::CFileGZOutputStream out(rawlog_path);
     auto archive = mrpt::serialization::archiveFrom(out);
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motion;  // MRPT's defaults
     for (size_t i = 0; i < log->lasers.size(); ++i) {
@@ -97,6 +102,6 @@ int main(int argc, char** argv) {
     return std::fprintf(stderr, "carmen2rawlog: %s\n", e.what()), 1;
   }
   std::fclose(stamps);
-  std::fprintf(stderr, "carmen2rawlog: %s: %zu steps\n", argv[2], log->lasers.size());
+  std::fprintf(stderr, "carmen2rawlog: %s: %zu steps\n", rawlog_path.c_str(), log->lasers.size());
   return 0;
 }

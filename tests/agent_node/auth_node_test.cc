@@ -85,16 +85,13 @@ TEST(AgentAuthTest, DownlinkMessagesNotSignedByTheAggregatorAreRefusedAndCounted
 }
 
 // Both nodes in memory, joined by queues (a message is delivered after the sender's tick, as
-// the network would, never from inside it).
-class Wire : public Publisher, public aggregator::node::Publisher {
+// the network would, never from inside it). The agent sends on the uplink, the aggregator on
+// the downlink.
+class Wire : public Publisher {
  public:
   bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override {
     if (link == Link::kUplink) up.push_back({channel, bytes});
-    return true;
-  }
-  bool Publish(aggregator::node::Link, const std::string& channel,
-               const std::vector<uint8_t>& bytes) override {
-    down.push_back({channel, bytes});
+    if (link == Link::kDownlink) down.push_back({channel, bytes});
     return true;
   }
   std::deque<std::pair<std::string, std::vector<uint8_t>>> up, down;

@@ -66,6 +66,26 @@ TEST(CommandLineTest, PositiveRefusesZeroNegativeAndNotFinite) {
   EXPECT_EQ(Positive()(good), "");
 }
 
+TEST(CommandLineTest, NotNegativeTakesZeroAndRefusesBelowZeroAndNotFinite) {
+  for (const char* bad : {"-0.5", "-1", "nan", "inf", "1s"}) {
+    std::string text = bad;
+    EXPECT_FALSE(NotNegative()(text).empty()) << bad;
+  }
+  for (const char* good : {"0", "12.5"}) {
+    std::string text = good;
+    EXPECT_EQ(NotNegative()(text), "") << good;
+  }
+}
+
+TEST(CommandLineTest, WholeNumberTakesDigitsOnly) {
+  for (const char* bad : {"-2", "2.5", "1e3", "", "x"}) {
+    std::string text = bad;
+    EXPECT_FALSE(WholeNumber()(text).empty()) << bad;
+  }
+  std::string good = "42";
+  EXPECT_EQ(WholeNumber()(good), "");
+}
+
 TEST(CommandLineTest, AnUnknownFlagIsAUsageError) {
   const Parsed p = Parse({"fleetmap-test", "--perod", "2"});
   EXPECT_EQ(p.exit_status, 2);

@@ -22,14 +22,5 @@ TEST(NumberTextTest, ReadsFiniteNumbersOnly) {
     EXPECT_FALSE(ParseNumber(bad, "--speed").ok()) << bad;
 }
 
-TEST(NumberTextTest, TheThrowingFormsThrowOnTheSameGarbage) {
-  EXPECT_DOUBLE_EQ(NumberOrThrow("60", "--window"), 60.0);
-  EXPECT_THROW(NumberOrThrow("60s", "--window"), std::invalid_argument);
-  EXPECT_EQ(IntegerOrThrow("-3", "--levels"), -3);
-  EXPECT_EQ(IntegerOrThrow("3", "--levels"), 3);
-  for (const char* bad : {"3.5", "3x", "", "-", "--3", "99999999999"})
-    EXPECT_THROW(IntegerOrThrow(bad, "--levels"), std::invalid_argument) << bad;
-}
-
 }  // namespace
 }  // namespace fleetmap::core

@@ -35,7 +35,7 @@ for p in "$bin"/fleetmap-*; do
   "$p" --help >/dev/null 2>&1 || fail "$name --help exits $?"
 done
 for c in export history rollback reset-region promote recover; do
-  "$bin/fleetmap-mapctl" "$c" --help | grep -q "usage: fleetmap-mapctl $c" || fail "mapctl $c --help"
+  "$bin/fleetmap-mapctl" "$c" --help | grep -q "Usage: fleetmap-mapctl $c" || fail "mapctl $c --help"
 done
 pass "--help and --version"
 
@@ -45,7 +45,7 @@ rc=$?
 [[ $rc == 2 && $out == *"scan matcher options out of range"* ]] || fail "carmen-eval took --fine-iterations 0 (exit $rc): $out"
 out=$("$bin/fleetmap-eval" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --confirmations 3 2>&1)
 rc=$?
-[[ $rc == 2 && $out == *"--confirmations takes 1 or 2"* ]] || fail "fleetmap-eval took --confirmations 3 (exit $rc): $out"
+[[ $rc == 2 && $out == *"--confirmations: 3 not in {1,2}"* ]] || fail "fleetmap-eval took --confirmations 3 (exit $rc): $out"
 printf 'aggregator:\n  merge:\n    confirm_gap_s: 5\n' >"$work/bad_aggregator.yaml"
 out=$("$bin/fleetmap-eval" --scenario "$src/tools/sim/worlds/livinglab/addition.yaml" --pipeline agents --aggregator-config "$work/bad_aggregator.yaml" 2>&1)
 rc=$?

@@ -23,7 +23,7 @@
 #include "vehicle_agent/node/agent_counters.h"
 #include "vehicle_agent/node/agent_node_options.h"
 #include "vehicle_agent/node/candidate_parts.h"
-#include "vehicle_agent/node/cause_log.h"
+#include "vehicle_agent/node/node_io.h"
 #include "vehicle_agent/node/sequence_store.h"
 #include "vehicle_agent/node/tile_send_queue.h"
 

@@ -1,13 +1,13 @@
-// Log lines of the agent node. Bad input is logged once per cause: a stream of broken
-// messages neither floods the log nor goes unseen (the caller still counts every one).
+// A node's log lines. Bad input is logged once per cause: a stream of broken messages neither
+// floods the log nor goes unseen (the caller still counts every one, and STATUS says how many).
 #pragma once
 
 #include <set>
 #include <string>
 
-#include "vehicle_agent/node/node_io.h"
+#include "edge/log_sink.h"
 
-namespace fleetmap::vehicle_agent::node {
+namespace fleetmap::edge {
 
 class CauseLog {
  public:
@@ -26,4 +26,4 @@ class CauseLog {
   std::set<std::string> seen_;
 };
 
-}  // namespace fleetmap::vehicle_agent::node
+}  // namespace fleetmap::edge

@@ -1,6 +1,6 @@
-#include "vehicle_agent/node/node_io.h"
+#include "edge/link.h"
 
-namespace fleetmap::vehicle_agent::node {
+namespace fleetmap::edge {
 
 const char* LinkName(Link link) {
   switch (link) {
@@ -14,4 +14,4 @@ const char* LinkName(Link link) {
   return "?";
 }
 
-}  // namespace fleetmap::vehicle_agent::node
+}  // namespace fleetmap::edge

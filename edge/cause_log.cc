@@ -1,6 +1,6 @@
-#include "aggregator/node/cause_log.h"
+#include "edge/cause_log.h"
 
-namespace fleetmap::aggregator::node {
+namespace fleetmap::edge {
 
 void CauseLog::Info(const std::string& line) const {
   if (sink_) sink_(LogLevel::kInfo, line);
@@ -13,8 +13,8 @@ void CauseLog::Warning(const std::string& line) const {
 bool CauseLog::Once(const std::string& cause, const std::string& line) {
   if (seen_.count(cause) || seen_.size() >= kMaxCauses) return false;
   seen_.insert(cause);
-  Warning(line + " (logged once; later ones are only counted)");
+  Warning(line + " (logged once; later ones are only counted, in STATUS)");
   return true;
 }
 
-}  // namespace fleetmap::aggregator::node
+}  // namespace fleetmap::edge
