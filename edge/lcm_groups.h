@@ -21,8 +21,8 @@ namespace fleetmap::edge {
 class LcmGroups {
  public:
   // A received message; `data` is valid during the call only.
-  using Handler = std::function<void(Link link, const std::string& channel, const uint8_t* data,
-                                     int size)>;
+  using Handler =
+      std::function<void(Link link, const std::string& channel, const uint8_t* data, int size)>;
 
   // Opens a link for every entry of `urls`. With `share_same_url`, links given the same URL
   // share one instance (one socket; with memq:// they then see each other's messages).
@@ -56,7 +56,7 @@ class LcmGroups {
   // instances (and their subscriptions) go first.
   std::vector<std::unique_ptr<Route>> routes_;
   std::vector<std::unique_ptr<lcm::LCM>> instances_;
-  std::vector<bool> receiving_;       // by instance: something subscribed
+  std::vector<bool> receiving_;      // by instance: something subscribed
   std::map<Link, size_t> instance_;  // by open link
 };
 
