@@ -39,7 +39,7 @@ struct Args {
 // A number flag with its default shown in --help.
 CLI::Option* Number(CLI::App& app, const std::string& name, double& value,
                     const std::string& help) {
-  return app.add_option(name, value, help)->check(fleetmap::core::Finite())->capture_default_str();
+  return app.add_option(name, value, help)->check(core::Finite())->capture_default_str();
 }
 
 void DefineFlags(CLI::App& app, Args& a) {

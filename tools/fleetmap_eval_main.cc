@@ -56,8 +56,7 @@ void DefineFlags(CLI::App& app, Args& a) {
   core::AddVersionFlag(app);
   app.add_option("--scenario", a.scenario, "scenario YAML")->required()->type_name("FILE");
   app.add_option("--map", a.map,
-                 "static map (map_server YAML) instead of the one the scenario "
-                 "names")
+                 "static map (map_server YAML) instead of the one the scenario names")
       ->type_name("FILE");
   app.add_option("--pipeline", a.pipeline, "oracle, agents or truthmaps")
       ->check(CLI::IsMember({"oracle", "truthmaps", "agents"}))
@@ -72,19 +71,17 @@ void DefineFlags(CLI::App& app, Args& a) {
       ->type_name("MODE");
   app.add_option("--anchor-error-m", a.anchor_error_m,
                  "truthmaps: largest anchor translation error, metres")
-      ->check(core::NotNegative() & CLI::Range(0.0, 1e3))
+      ->check(core::Finite() & CLI::Range(0.0, 1e3))
       ->capture_default_str();
   app.add_option("--anchor-error-deg", a.anchor_error_deg,
                  "truthmaps: largest anchor rotation error, degrees")
-      ->check(core::NotNegative() & CLI::Range(0.0, 180.0))
+      ->check(core::Finite() & CLI::Range(0.0, 180.0))
       ->capture_default_str();
   app.add_option("--confirmations", a.confirmations,
                  "temporary maps of different times that must see an obstacle before it is "
                  "added: 1 (the paper) or 2 [2]")
       ->check(CLI::IsMember({1, 2}));
-  app.add_option("--seed", a.seed,
-                 "truthmaps: added to the scenario's seed for the anchor "
-                 "errors")
+  app.add_option("--seed", a.seed, "truthmaps: added to the scenario's seed for the anchor errors")
       ->check(core::WholeNumber())
       ->capture_default_str();
   app.add_option("--lcm-log", a.lcm_logs,
@@ -95,8 +92,7 @@ void DefineFlags(CLI::App& app, Args& a) {
       ->type_name("FILE")
       ->allow_extra_args(false);  // one file per flag; the flag repeats
   app.add_option("--epoch", a.epoch_s,
-                 "recorded run: the epoch fleetmap-sim added to simulated "
-                 "time")
+                 "recorded run: the epoch fleetmap-sim added to simulated time")
       ->check(core::Finite())
       ->capture_default_str();
   app.add_option("--duration", a.duration_s,

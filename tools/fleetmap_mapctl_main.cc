@@ -297,7 +297,7 @@ int Recover(const Args& a) {
   return 0;
 }
 
-// Reads a number flag into an optional: set only when given.
+// Reads a flag into an optional, set only when given (CLI11 2.1 cannot fill std::optional).
 template <typename T>
 CLI::Option* AddOptional(CLI::App* app, const std::string& name, std::optional<T>& value,
                          const std::string& help) {

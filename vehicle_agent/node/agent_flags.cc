@@ -1,6 +1,5 @@
 #include "vehicle_agent/node/agent_flags.h"
 
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -130,8 +129,7 @@ void DefineFlags(CLI::App& app, GivenFlags& given) {
   app.footer(kFooter);
   core::AddVersionFlag(app);
   app.add_option("--config", given.config_path,
-                 "YAML configuration; every key in "
-                 "docs/agent_process.md")
+                 "YAML configuration; every key in docs/agent_process.md")
       ->type_name("FILE");
   for (const ValueFlag& flag : ValueFlags())
     app.add_option(flag.name, given.values[flag.name], flag.help)->type_name(flag.value_name);
