@@ -16,7 +16,7 @@ case ${1:-} in
   *) echo "run_bench.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
 esac
 
-scripts/install_deps.sh
+scripts/install_deps.sh  # first: the archive's package lists, which MRPT needs too
 if ! command -v icp-slam >/dev/null || [[ ! -d /usr/lib/x86_64-linux-gnu/cmake/mrpt-obs ]]; then
   echo "run_bench: installing MRPT for the comparison (mrpt-apps libmrpt-obs-dev)" >&2
   { [[ $(id -u) == 0 ]] && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
@@ -25,9 +25,8 @@ if ! command -v icp-slam >/dev/null || [[ ! -d /usr/lib/x86_64-linux-gnu/cmake/m
 fi
 # BENCH=ON said, not assumed: the folder is shared with run_eval.sh and by hand, and a cached
 # OFF would leave this with no benchmark programs to run.
-cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
-  -DFLEETMAP_BUILD_BENCH=ON -DFLEETMAP_BUILD_JAR=OFF >/dev/null
-cmake --build build-release -j "$(nproc)" >&2
+scripts/build.sh build-release -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
+  -DFLEETMAP_BUILD_BENCH=ON -DFLEETMAP_BUILD_JAR=OFF
 ((build_only)) && { echo "run_bench: built (build-release/bench)" >&2; exit 0; }
 mkdir -p out/bench
 failed=()  # a program that fails loses its figures, not the others'; the exit status says so

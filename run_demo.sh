@@ -24,11 +24,10 @@ done
 step() { printf '\n== %s\n' "$*"; }
 
 step "1/4 installing missing packages and building"
-scripts/install_deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 # Exactly the programs the fleet script runs: it keeps the one list (scripts/fleet_run.sh --programs).
-mapfile -t programs < <(scripts/fleet_run.sh --programs)
-cmake --build build -j "$(nproc)" -t "${programs[@]}"
+targets=()
+while read -r program; do targets+=(--target "$program"); done < <(scripts/fleet_run.sh --programs)
+scripts/build.sh build "${targets[@]}"
 
 step "2/4 multicast on loopback (LCM needs a route for 224.0.0.0/4 and a large receive buffer)"
 scripts/setup_multicast.sh

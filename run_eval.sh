@@ -10,7 +10,7 @@
 #                  generated buildings and every public map of FLEETMAP_DATA_DIR/worlds, each
 #                  with the pipelines agents and truthmaps, suite.* figures, out/suite/suite.md
 #                  and suite.png; --quick: 8 small worlds, checked against the thresholds of
-#                  tools/suite/quick_thresholds.txt (the test suite runs it)
+#                  eval/suite/quick_thresholds.txt (the test suite runs it)
 # Per scenario: eval.S.* is the real system (vehicle pipelines + aggregator, pipeline
 # "agents"), eval.S.paper_mode.* the same with the paper's alignment, eval.S.truthmaps.* the
 # aggregator alone fed perfect temporary maps with anchor errors up to 0.3 m / 3 deg, and
@@ -49,29 +49,27 @@ done
 if [[ -n ${FLEETMAP_EVAL_BIN_DIR:-} ]]; then
   bin=$FLEETMAP_EVAL_BIN_DIR
 else
-  scripts/install_deps.sh
   build=${FLEETMAP_EVAL_BUILD_DIR:-build-release}
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
-    -DFLEETMAP_BUILD_JAR=OFF >/dev/null
-  cmake --build "$build" -j "$(nproc)" --target fleetmap-eval fleetmap-carmen-eval fleetmap-suite \
-    fleetmap-locate-eval >&2
+  scripts/build.sh "$build" -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
+    -DFLEETMAP_BUILD_JAR=OFF --target fleetmap-eval --target fleetmap-carmen-eval \
+    --target fleetmap-suite --target fleetmap-locate-eval
   bin=$build/bin
 fi
 ((build_only)) && { echo "run_eval: built ($bin)" >&2; exit 0; }
 
 if ((suite)); then
-  args=(--out "${FLEETMAP_SUITE_OUT:-out/suite}" --livinglab tools/sim/worlds/livinglab/fleet.yaml)
+  args=(--out "${FLEETMAP_SUITE_OUT:-out/suite}" --livinglab sim/worlds/livinglab/fleet.yaml)
   if ((quick)); then
     args=(--out "${FLEETMAP_SUITE_OUT:-out/suite-quick}" --quick
-      --livinglab tools/sim/worlds/livinglab/fleet_short.yaml)
+      --livinglab sim/worlds/livinglab/fleet_short.yaml)
     while read -r requirement _; do
       [[ -n $requirement && $requirement != \#* ]] && args+=(--require "$requirement")
-    done <tools/suite/quick_thresholds.txt
+    done <eval/suite/quick_thresholds.txt
   fi
   exec "$bin"/fleetmap-suite "${args[@]}" --data-dir "${FLEETMAP_DATA_DIR:-../shared/data}"
 fi
 
-worlds=tools/sim/worlds/livinglab
+worlds=sim/worlds/livinglab
 data=${FLEETMAP_DATA_DIR:-../shared/data}/real  # the real logs (FLEETMAP_DATA_DIR)
 scenarios=() logs=()
 if [[ -n $scenario ]]; then

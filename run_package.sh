@@ -20,13 +20,8 @@ esac
 
 build_dir=${FLEETMAP_BUILD_DIR:-build}
 jobs=${FLEETMAP_JOBS:-$(nproc)}
-args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo)
-[[ ${CI:-} == true ]] && args+=(-DFLEETMAP_WERROR=ON)
-
-scripts/install_deps.sh
-cmake -S . -B "$build_dir" "${args[@]}" >/dev/null
 # Only what the packages hold (CMAKE_SKIP_INSTALL_ALL_DEPENDENCY: CPack builds nothing else).
-cmake --build "$build_dir" -j "$jobs" --target fleetmap_packaged
+FLEETMAP_JOBS=$jobs scripts/build.sh "$build_dir" --target fleetmap_packaged
 scripts/make_debs.sh "$build_dir" out/deb
 for deb in out/deb/*.deb; do
   name=$(dpkg-deb -f "$deb" Package)

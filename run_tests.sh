@@ -9,7 +9,7 @@ cd "$(dirname "$0")"
 
 build_dir=build
 ctest_args=()
-args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+args=()
 if [[ ${1:-} == --sanitize ]]; then
   build_dir=build-asan
   # -O1 -g1: what the sanitizers' own documentation suggests; line tables are all a report
@@ -24,12 +24,9 @@ elif [[ -n ${1:-} ]]; then
   [[ $1 == --help || $1 == -h ]] && exit 0
   exit 2
 fi
-[[ ${CI:-} == true ]] && args+=(-DFLEETMAP_WERROR=ON)
 jobs=${FLEETMAP_JOBS:-$(nproc)}
 
-scripts/install_deps.sh
-cmake -S . -B "$build_dir" "${args[@]}" >/dev/null
-cmake --build "$build_dir" -j "$jobs"
+scripts/build.sh "$build_dir" "${args[@]}"
 # Sanitizers: fail on the first report, and keep leak checking on.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

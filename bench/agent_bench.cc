@@ -11,7 +11,7 @@
 
 #include "bench/figure_reporter.h"
 #include "core/map_io.h"
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 #include "vehicle_agent/agent_pipeline.h"
 
 namespace fleetmap::bench {
@@ -35,7 +35,7 @@ struct Recording {
 };
 
 Recording Record() {
-  const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
+  const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/";
   const auto scenario = sim::ParseScenario(kScenario, dir + "agent_bench.yaml").value();
   Recording r;
   r.map = core::LoadMapServerMap(scenario.map_yaml).value().grid;

@@ -20,10 +20,11 @@ done
 "$root/scripts/setup_multicast.sh" >/dev/null ||
   { echo "agent_process_bench: no multicast on loopback: run scripts/setup_multicast.sh as root" >&2; exit 1; }
 
-scenario=$root/tools/sim/worlds/livinglab/addition.yaml
+scenario=$root/sim/worlds/livinglab/addition.yaml
+# shellcheck source=../scripts/lib/fleet_launch.sh
+source "$root/scripts/lib/fleet_launch.sh"
 # Groups and ports of this benchmark only, so that a running demo or test does not interfere.
-url() { echo "udpm://239.255.78.$1:$2?ttl=0&recv_buf_size=8388608"; }
-sensor=$(url 1 7981) uplink=$(url 2 7982) downlink=$(url 3 7983)
+fleet_links 7981 0 239.255.78
 work=$(mktemp -d)
 agent="" sim=""
 cleanup() {
@@ -33,12 +34,11 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# `ID X Y THETA [MOUNT_X MOUNT_Y MOUNT_THETA]` (older simulators print no mount).
-read -r id x y theta mx my mtheta < <("$build/bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | grep -v '^map ' | head -1)
-map=$("$build/bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | sed -n 's/^map //p')
-"$build/bin/fleetmap-agent" --vehicle-id "$id" --map "$map" --initial-pose "$x,$y,$theta" \
-  --scanner-mount "${mx:-0.3},${my:-0},${mtheta:-0}" --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
-  --state-dir "$work/state" --quiet >"$work/agent.txt" 2>&1 &
+map=$(fleet_static_map "$build/bin" "$scenario")
+vehicle=$(fleet_vehicles "$build/bin" "$scenario" | head -1)
+id=${vehicle%% *}
+fleet_agent_command "$build/bin" "$vehicle" "$map" "$work/state"
+"${agent_command[@]}" --quiet >"$work/agent.txt" 2>&1 &
 agent=$!
 sleep 1
 "$build/bin/fleetmap-sim" --scenario "$scenario" --speed 1 --duration $((duration + 10)) --no-truth \

@@ -38,10 +38,10 @@ if [[ ! -s $uplink_log ]]; then
     { tail -20 "$root/out/bench/fleet_run.txt" >&2; echo "aggregator_scaling_bench: no uplink log recorded" >&2; exit 1; }
 fi
 
-# Groups and ports of this benchmark only.
-url() { echo "udpm://239.255.79.$1:$2?ttl=0&recv_buf_size=8388608"; }
-uplink=$(url 1 7991) downlink=$(url 2 7992)
-map=$("$build/bin/fleetmap-sim" --scenario "$root/tools/sim/worlds/livinglab/fleet.yaml" --list-vehicles | sed -n 's/^map //p')
+# shellcheck source=../scripts/lib/fleet_launch.sh
+source "$root/scripts/lib/fleet_launch.sh"
+fleet_links 7991 0 239.255.79  # groups and ports of this benchmark only
+map=$(fleet_static_map "$build/bin" "$root/sim/worlds/livinglab/fleet.yaml")
 work=$(mktemp -d)
 aggregator="" publisher=""
 cleanup() {
@@ -58,8 +58,8 @@ warmup=10
 
 for n in "${counts[@]}"; do
   rm -rf "$work/state"
-  "$build/bin/fleetmap-aggregator" --map "$map" --state-dir "$work/state" --uplink-url "$uplink" \
-    --downlink-url "$downlink" --quiet >"$work/aggregator.txt" 2>&1 &
+  fleet_aggregator_command "$build/bin" "$map" "$work/state"
+  "${aggregator_command[@]}" --quiet >"$work/aggregator.txt" 2>&1 &
   aggregator=$!
   sleep 1
   "$build/bin/fleetmap-bench-tempmap-publisher" --log "$uplink_log" --url "$uplink" --vehicles "$n" \

@@ -7,7 +7,7 @@
 
 #include "bench/figure_reporter.h"
 #include "core/tile_delta.h"
-#include "tools/sim/livinglab_map.h"
+#include "sim/livinglab_map.h"
 
 namespace fleetmap::bench {
 namespace {

@@ -17,7 +17,7 @@
 
 #include "bench/figure_reporter.h"
 #include "core/ray_caster.h"
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 #include "vehicle_agent/divergence.h"
 #include "vehicle_agent/localizer.h"
 
@@ -30,9 +30,7 @@ using vehicle_agent::DivergenceRule;
 using vehicle_agent::Localizer;
 using vehicle_agent::LocalizerOptions;
 
-std::string WorldsDir() {
-  return std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
-}
+std::string WorldsDir() { return std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/"; }
 
 sim::World OrDie(core::Result<sim::World> world) {
   if (!world.ok()) {

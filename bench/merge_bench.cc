@@ -14,7 +14,7 @@
 #include "bench/figure_reporter.h"
 #include "core/ray_caster.h"
 #include "core/scan_inserter.h"
-#include "tools/sim/livinglab_map.h"
+#include "sim/livinglab_map.h"
 
 namespace fleetmap::bench {
 namespace {

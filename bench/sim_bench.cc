@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/figure_reporter.h"
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace fleetmap::bench {
 namespace {
@@ -12,8 +12,8 @@ constexpr double kSimulatedSeconds = 20.0;
 
 const sim::World& AdditionWorld() {
   static const sim::World world = [] {
-    auto w = sim::World::Load(std::string(FLEETMAP_SOURCE_DIR) +
-                              "/tools/sim/worlds/livinglab/addition.yaml");
+    auto w =
+        sim::World::Load(std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/addition.yaml");
     if (!w.ok()) {
       std::fprintf(stderr, "sim_bench: %s\n", w.status().ToString().c_str());
       std::exit(1);

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bench/figure_reporter.h"
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 #include "vehicle_agent/temp_map_builder.h"
 
 namespace fleetmap::bench {
@@ -22,8 +22,8 @@ struct Recorded {
 // 20 s of one vehicle's scans with its noisy odometry between them.
 const Recorded& Scans() {
   static const Recorded recorded = [] {
-    auto world = sim::World::Load(std::string(FLEETMAP_SOURCE_DIR) +
-                                  "/tools/sim/worlds/livinglab/addition.yaml");
+    auto world =
+        sim::World::Load(std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/addition.yaml");
     if (!world.ok()) {
       std::fprintf(stderr, "tempmap_bench: %s\n", world.status().ToString().c_str());
       std::exit(1);

@@ -5,7 +5,7 @@
 # type: an assert that outside data can reach is a bug the fuzzer must report, not skip.
 if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
   message(FATAL_ERROR "FLEETMAP_FUZZ needs clang (libFuzzer ships with it): configure with "
-                      "-DCMAKE_CXX_COMPILER=clang++-14, as scripts/fuzz.sh does")
+                      "-DCMAKE_CXX_COMPILER=clang++-14, as ./run_fuzz.sh does")
 endif()
 if(FLEETMAP_SANITIZE)
   message(FATAL_ERROR "FLEETMAP_FUZZ already builds with ASan and UBSan: "

@@ -55,17 +55,19 @@ install(FILES "${fleetmap_pkg_dir}/etc/aggregator.yaml" "${fleetmap_pkg_dir}/etc
         DESTINATION /etc/fleetmap COMPONENT aggregator)
 
 # fleetmap-tools: the LAN experiment finds its lib/ and the worlds beside it, as in the
-# source tree (/usr/share/fleetmap/tools/...), and the programs through --bin /usr/bin.
+# source tree (/usr/share/fleetmap/ops/lan, .../sim/worlds), and the programs through --bin /usr/bin.
 install(TARGETS fleetmap-sim fleetmap-eval fleetmap-maptool fleetmap-sick-emulator
                 fleetmap-sim-candump fleetmap-carmen-eval fleetmap-publish-samples fleetmap-lan-tool
                 fleetmap-worldgen fleetmap-suite fleetmap-locate-eval
         RUNTIME DESTINATION bin COMPONENT tools)
-install(DIRECTORY "${PROJECT_SOURCE_DIR}/tools/sim/worlds" DESTINATION share/fleetmap/tools/sim
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/sim/worlds" DESTINATION share/fleetmap/sim
         COMPONENT tools)
-install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/lan/fleetmap-lan-experiment"
-        DESTINATION share/fleetmap/tools/lan COMPONENT tools)
-install(DIRECTORY "${PROJECT_SOURCE_DIR}/tools/lan/lib" DESTINATION share/fleetmap/tools/lan
+install(PROGRAMS "${PROJECT_SOURCE_DIR}/ops/lan/fleetmap-lan-experiment"
+        DESTINATION share/fleetmap/ops/lan COMPONENT tools)
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/ops/lan/lib" DESTINATION share/fleetmap/ops/lan
         COMPONENT tools)
+install(FILES "${PROJECT_SOURCE_DIR}/scripts/lib/fleet_launch.sh"
+        DESTINATION share/fleetmap/scripts/lib COMPONENT tools)
 configure_file("${fleetmap_pkg_dir}/bin/fleetmap-lan-experiment"
                "${PROJECT_BINARY_DIR}/packaging/fleetmap-lan-experiment" @ONLY)
 install(PROGRAMS "${PROJECT_BINARY_DIR}/packaging/fleetmap-lan-experiment" DESTINATION bin
@@ -81,9 +83,12 @@ if(TARGET fleetmap_lcmtypes_jar)
        "${PROJECT_BINARY_DIR}/packaging/fleetmap-lcmtypes.jar" SYMBOLIC)
   install(FILES "${PROJECT_BINARY_DIR}/packaging/fleetmap-lcmtypes.jar" DESTINATION share/java
           COMPONENT java)
-  configure_file("${fleetmap_pkg_dir}/bin/fleetmap-spy" "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy"
-                 @ONLY)
+  # The source tree's launcher, its version filled in; its helper where it looks when installed.
+  configure_file("${PROJECT_SOURCE_DIR}/ops/spy/fleetmap-spy"
+                 "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy" @ONLY)
   install(PROGRAMS "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy" DESTINATION bin COMPONENT java)
+  install(FILES "${PROJECT_SOURCE_DIR}/ops/spy/lcm_java_env.sh"
+          DESTINATION share/fleetmap/ops/spy COMPONENT java)
   list(APPEND fleetmap_components java)
 endif()
 
@@ -165,7 +170,7 @@ fleetmap_program_man_page(tools fleetmap-worldgen "generate buildings and scenar
 fleetmap_program_man_page(tools fleetmap-suite "run the world suite")
 fleetmap_program_man_page(tools fleetmap-locate-eval "measure global localization against the simulation's truth")
 fleetmap_man_page(tools fleetmap-lan-experiment "bandwidth experiments on a LAN of network namespaces"
-                  "${PROJECT_SOURCE_DIR}/tools/lan/fleetmap-lan-experiment" "${PROJECT_VERSION}")
+                  "${PROJECT_SOURCE_DIR}/ops/lan/fleetmap-lan-experiment" "${PROJECT_VERSION}")
 if(TARGET fleetmap_lcmtypes_jar)
   fleetmap_man_page(java fleetmap-spy "lcm-spy with fleetmap's message types"
                     "${PROJECT_BINARY_DIR}/packaging/fleetmap-spy")

@@ -1,8 +1,8 @@
-// Scenario YAML (tools/sim/scenario.h, docs/scenario.md): any text through ParseScenario, which
+// Scenario YAML (sim/scenario.h, docs/scenario.md): any text through ParseScenario, which
 // must turn every malformed document into a Status naming the field (yaml-cpp exceptions
 // included) and accept only what the simulator can run.
 #include "fuzz/fuzz_check.h"
-#include "tools/sim/scenario.h"
+#include "sim/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace fleetmap;

@@ -20,8 +20,7 @@ std::string ReadText(const fs::path& path) {
 // A corner of the LivingLab map with walls, free and unknown cells (or a pattern without it).
 core::GrayImage Crop(const SeedInputs& in, int width, int height) {
   core::GrayImage crop{width, height, std::vector<uint8_t>(size_t(width) * height, 205)};
-  auto map =
-      core::ReadPgmFile((in.source_dir / "tools/sim/worlds/livinglab/livinglab.pgm").string());
+  auto map = core::ReadPgmFile((in.source_dir / "sim/worlds/livinglab/livinglab.pgm").string());
   for (int row = 0; row < height; ++row) {
     for (int x = 0; x < width; ++x) {
       const bool inside = map.ok() && x < map->width && row < map->height;
@@ -72,7 +71,7 @@ void AddMapSeeds(SeedCorpus& corpus, const SeedInputs& in) {
   AddPgm(corpus, image);
   AddSavedMaps(corpus, image);
   // The shipped map's own YAML (negate, thresholds as a user writes them) with a crop.
-  std::string yaml = ReadText(in.source_dir / "tools/sim/worlds/livinglab/livinglab.yaml");
+  std::string yaml = ReadText(in.source_dir / "sim/worlds/livinglab/livinglab.yaml");
   if (const size_t at = yaml.find("livinglab.pgm"); at != std::string::npos) {
     yaml.replace(at, 13, "map.pgm");
     corpus.Add("map_load", "livinglab_yaml",
@@ -80,7 +79,7 @@ void AddMapSeeds(SeedCorpus& corpus, const SeedInputs& in) {
   }
   for (const char* scenario : {"addition", "removal", "fleet", "fleet_short"}) {
     const std::string text =
-        ReadText(in.source_dir / "tools/sim/worlds/livinglab" / (std::string(scenario) + ".yaml"));
+        ReadText(in.source_dir / "sim/worlds/livinglab" / (std::string(scenario) + ".yaml"));
     if (!text.empty()) corpus.Add("scenario", scenario, text);
   }
 }

@@ -8,11 +8,11 @@
 #include "drivers/sick/commands.h"
 #include "drivers/sick/scan_conversion.h"
 #include "drivers/sick/scan_telegram_codec.h"
+#include "eval/carmen/carmen_log.h"
 #include "fuzz/seed_sources.h"
-#include "tools/carmen/carmen_log.h"
-#include "tools/sickemu/recording_reader.h"
-#include "tools/sickemu/s300_output.h"
-#include "tools/sickemu/tcp_reassembly.h"
+#include "sim/sick/recording_reader.h"
+#include "sim/sick/s300_output.h"
+#include "sim/sick/tcp_reassembly.h"
 
 namespace fleetmap::fuzz {
 namespace {
@@ -41,9 +41,9 @@ std::vector<std::string> FirstLines(const fs::path& path, size_t n) {
   return lines;
 }
 
-std::vector<sickemu::RecordedTelegram> Recording(const fs::path& path) {
-  auto recording = sickemu::ReadRecording(path.string());
-  return recording.ok() ? recording->telegrams : std::vector<sickemu::RecordedTelegram>{};
+std::vector<sim::sick::RecordedTelegram> Recording(const fs::path& path) {
+  auto recording = sim::sick::ReadRecording(path.string());
+  return recording.ok() ? recording->telegrams : std::vector<sim::sick::RecordedTelegram>{};
 }
 
 void AddRecordedStreams(SeedCorpus& corpus, const fs::path& sick_dir) {
@@ -51,14 +51,14 @@ void AddRecordedStreams(SeedCorpus& corpus, const fs::path& sick_dir) {
        {"sick_scan_xd/20210302_lms111.pcapng.json", "sick_scan_xd/20210302_lms511.pcapng.json",
         "sick_scan_xd/20210125-tim781s-scandata.pcapng.json",
         "sick_scan_xd/20221018_rms_1xxx_ascii_rms2_objects.pcapng.json", "pysicktim/sim.dat"}) {
-    const std::vector<sickemu::RecordedTelegram> telegrams = Recording(sick_dir / file);
+    const std::vector<sim::sick::RecordedTelegram> telegrams = Recording(sick_dir / file);
     if (telegrams.empty()) continue;
     const std::string name = fs::path(file).stem().stem().string();
     // The startup dialogue and the first scan, framed as on the wire.
     std::string startup;
     bool scan_added = false;
     for (size_t i = 0; i < telegrams.size(); ++i) {
-      const sickemu::RecordedTelegram& t = telegrams[i];
+      const sim::sick::RecordedTelegram& t = telegrams[i];
       const bool scan = sick::IsScanTelegram(t.payload);
       if (i < 12 && !scan) startup += sick::FrameTelegram(t.protocol, t.payload);
       if (!scan || scan_added) continue;
@@ -76,9 +76,9 @@ void AddRecordedStreams(SeedCorpus& corpus, const fs::path& sick_dir) {
 void AddCapturedSegments(SeedCorpus& corpus, const fs::path& sick_dir) {
   auto bytes = core::ReadFileBytes((sick_dir / "sick_scan_xd/test.pcapng").string(), 16 << 20);
   if (!bytes.ok()) return;
-  auto streams = sickemu::ReassemblePcapng(*bytes);
+  auto streams = sim::sick::ReassemblePcapng(*bytes);
   if (!streams.ok()) return;
-  for (const sickemu::TcpStream& s : *streams) {
+  for (const sim::sick::TcpStream& s : *streams) {
     if (s.src_port != 2112 || s.segments.size() < 3) continue;
     std::string three;
     for (size_t i = 0; i < 3; ++i) three += s.segments[i].bytes;
@@ -116,8 +116,8 @@ void AddEncodedTelegrams(SeedCorpus& corpus, const std::vector<core::LaserScan>&
 
 void AddS300(SeedCorpus& corpus, const std::vector<core::LaserScan>& scans) {
   if (scans.empty()) return;
-  const auto s300 = sick::EncodeS300Telegram(sickemu::S300FromLaserScan(scans[0], 17));
-  const auto s3000 = sick::EncodeS300Telegram(sickemu::S300FromLaserScan(scans.back(), 18, 381));
+  const auto s300 = sick::EncodeS300Telegram(sim::sick::S300FromLaserScan(scans[0], 17));
+  const auto s3000 = sick::EncodeS300Telegram(sim::sick::S300FromLaserScan(scans.back(), 18, 381));
   const std::string a(s300.begin(), s300.end()), b(s3000.begin(), s3000.end());
   corpus.Add("s300", "s300_541_beams", Stream(255, a));
   corpus.Add("s300", "s3000_381_beams", Stream(255, b));
@@ -130,7 +130,7 @@ std::vector<core::LaserScan> RealScans(const SeedInputs& in) {
   std::vector<core::LaserScan> scans;
   for (const char* file :
        {"sick/sick_scan_xd/20210302_lms511.pcapng.json", "sick/pysicktim/sim.dat"}) {
-    for (const sickemu::RecordedTelegram& t : Recording(in.data_dir / file)) {
+    for (const sim::sick::RecordedTelegram& t : Recording(in.data_dir / file)) {
       auto telegram = sick::ParseScanTelegram(t.payload, t.protocol);
       auto scan =
           telegram.ok() ? sick::ToLaserScan(*telegram, {}, 1700000000.0) : telegram.status();
@@ -139,10 +139,10 @@ std::vector<core::LaserScan> RealScans(const SeedInputs& in) {
       break;  // one per file is enough
     }
   }
-  carmen::CarmenLog log;
+  eval::carmen::CarmenLog log;
   for (const char* file : {"real/intel/intel.rebuilt.clf", "real/fr079/fr079.log"}) {
     for (const std::string& line : FirstLines(in.data_dir / file, 12)) {
-      (void)carmen::ParseCarmenLine(line, 0, {}, log);
+      (void)eval::carmen::ParseCarmenLine(line, 0, {}, log);
     }
   }
   for (size_t i = 0; i < log.lasers.size() && i < 2; ++i) scans.push_back(log.lasers[i].scan);

@@ -142,7 +142,7 @@ echo "arm.agent_binary_bytes $(stat -c %s "$work/fleetmap-agent")"
 # 6. Resident memory of an idle agent holding the LivingLab map (peak VmHWM after 6 s). Under
 # qemu-user the process is the emulator with the agent inside: an upper bound for the agent.
 idle_rss_mb() {  # command...
-  "$@" --vehicle-id rss --map tools/sim/worlds/livinglab/livinglab.yaml --initial-pose 5,4,0 \
+  "$@" --vehicle-id rss --map sim/worlds/livinglab/livinglab.yaml --initial-pose 5,4,0 \
     --sensor-url 'udpm://239.255.76.69:17969?ttl=0' --uplink-url 'udpm://239.255.76.67:17967?ttl=0' \
     --downlink-url 'udpm://239.255.76.68:17968?ttl=0' --duration 8 --quiet >/dev/null 2>&1 &
   local pid=$!

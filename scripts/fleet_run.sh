@@ -9,7 +9,7 @@
 #
 #   scripts/fleet_run.sh [--scenario FILE] [--speed X] [--duration S] [--out DIR]
 #                        [--port P] [--bin DIR] [--name NAME] [--loss P] [--key]
-#     --scenario FILE  scenario YAML             [tools/sim/worlds/livinglab/fleet.yaml]
+#     --scenario FILE  scenario YAML             [sim/worlds/livinglab/fleet.yaml]
 #     --speed X        simulated seconds per wall-clock second                     [4]
 #     --duration S     simulated seconds                     [the scenario's duration]
 #     --out DIR        results folder (its logs/, maps/ and state/ are replaced)   [out]
@@ -29,10 +29,12 @@
 # Exit status: 0 when every step ran and the replay matched; 1 otherwise.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# shellcheck source=lib/fleet_launch.sh
+source "$root/scripts/lib/fleet_launch.sh"
 # Every program run below as "$bin/NAME": the one list (run_demo.sh builds it; fleet_test checks
 # it against the script's commands).
 programs=(fleetmap-sim fleetmap-agent fleetmap-aggregator fleetmap-eval fleetmap-record fleetmap-keygen)
-scenario=$root/tools/sim/worlds/livinglab/fleet.yaml
+scenario=$root/sim/worlds/livinglab/fleet.yaml
 speed=4 duration="" out=out port=7667 bin=$root/build/bin name=demo loss=0 key=0
 while [ $# -gt 0 ]; do
   case $1 in
@@ -90,24 +92,19 @@ dropped_packets() {
 }
 [ "$loss" = 0 ] || lossy_namespace
 
-# ttl=0: nothing leaves this host. Separate groups per direction: no vehicle receives the
-# other vehicles' temporary maps, the aggregator not their scans.
-url() { echo "udpm://$1:$2?ttl=0&recv_buf_size=8388608"; }
-uplink=$(url 239.255.76.67 "$port")
-downlink=$(url 239.255.76.68 $((port + 1)))
-sensor=$(url 239.255.76.69 $((port + 2)))
+fleet_links "$port"  # ttl=0: nothing leaves this host
 
 mkdir -p "$out"
 rm -rf "$out/logs" "$out/maps" "$out/state"
 mkdir -p "$out/logs" "$out/maps" "$out/state"
-static_map=$("$bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | sed -n 's/^map //p')
+static_map=$(fleet_static_map "$bin" "$scenario")
 keyed=()  # --key-file for every process, with --key
 if ((key)); then
   rm -f "$out/fleet.key"
   "$bin/fleetmap-keygen" "$out/fleet.key" >/dev/null
   keyed=(--key-file "$out/fleet.key")
 fi
-mapfile -t vehicles < <("$bin/fleetmap-sim" --scenario "$scenario" --list-vehicles | grep -v '^map ')
+mapfile -t vehicles < <(fleet_vehicles "$bin" "$scenario")
 
 declare -a loggers agents
 aggregator=""
@@ -126,17 +123,15 @@ for group in sensor uplink downlink; do
     "$out/logs/$group.lcmlog" >"$out/logs/logger_$group.txt" 2>&1 &
   loggers+=($!)
 done
-"${run[@]}" "$bin/fleetmap-aggregator" --map "$static_map" --state-dir "$out/state/aggregator" \
-  "${keyed[@]}" --uplink-url "$uplink" --downlink-url "$downlink" --final-map "$out/maps/aggregator.yaml" \
+fleet_aggregator_command "$bin" "$static_map" "$out/state/aggregator"
+"${run[@]}" "${aggregator_command[@]}" "${keyed[@]}" --final-map "$out/maps/aggregator.yaml" \
   >"$out/logs/aggregator.txt" 2>&1 &
 aggregator=$!
 vehicle_maps=()
 for line in "${vehicles[@]}"; do
-  read -r id x y theta mx my mtheta <<<"$line"
-  "${run[@]}" "$bin/fleetmap-agent" --vehicle-id "$id" --map "$static_map" --initial-pose "$x,$y,$theta" \
-    --scanner-mount "$mx,$my,$mtheta" \
-    --sensor-url "$sensor" --uplink-url "$uplink" --downlink-url "$downlink" \
-    --state-dir "$out/state/$id" --final-map "$out/maps/$id.yaml" --quiet "${keyed[@]}" \
+  read -r id _ <<<"$line"
+  fleet_agent_command "$bin" "$line" "$static_map" "$out/state/$id"
+  "${run[@]}" "${agent_command[@]}" --final-map "$out/maps/$id.yaml" --quiet "${keyed[@]}" \
     >"$out/logs/agent_$id.txt" 2>&1 &
   agents+=($!)
   vehicle_maps+=(--vehicle-map "$id=$out/maps/$id.yaml")

@@ -16,9 +16,9 @@ packages=(
   clang-format  # scripts/check_format.sh (ctest format_test)
   clang-14 libclang-rt-14-dev  # libFuzzer targets (scripts/fuzz.sh, docs/fuzzing.md)
   libsodium-dev  # message authentication: HMAC-SHA-256, key derivation (docs/security.md)
-  gnuplot-nox  # the LAN experiments' plots (tools/lan, docs/lan_experiments.md)
+  gnuplot-nox  # the LAN experiments' plots (ops/lan, docs/lan_experiments.md)
   dpkg-dev fakeroot file systemd  # Debian packages: dpkg-shlibdeps, systemd-analyze (docs/deployment.md)
-  help2man lintian  # the packages' manual pages and their check (tests/deploy/package_test.sh)
+  help2man lintian  # the packages' manual pages and their check (tests/integration/deploy/package_test.sh)
   jq  # the figures as JSON (scripts/figures_json.sh: out/bench.json, out/eval.json)
   "$@"
 )

@@ -38,9 +38,11 @@ cleanup() {
 }
 trap cleanup EXIT
 
-url() { echo "udpm://$1:$2?ttl=0&recv_buf_size=8388608"; }
+# shellcheck source=lib/fleet_launch.sh
+source "$root/scripts/lib/fleet_launch.sh"
+fleet_links "$port"  # the groups fleet_run.sh --port opens
 # The run: real time, long enough that the spies see every channel.
-"$root/scripts/fleet_run.sh" --scenario "$root/tools/sim/worlds/livinglab/fleet_short.yaml" \
+"$root/scripts/fleet_run.sh" --scenario "$root/sim/worlds/livinglab/fleet_short.yaml" \
   --speed 1 --duration $((wait_s + 15)) --port "$port" --bin "$bin" --out "$work/run" \
   --name spy >"$work/run.log" 2>&1 &
 pids+=($!)
@@ -51,11 +53,11 @@ spy() {  # DISPLAY_NUMBER URL ROW PNG
   Xvfb ":$1" -screen 0 1460x605x24 >"$work/xvfb$1.log" 2>&1 &
   pids+=($!)
   sleep 2
-  DISPLAY=":$1" FLEETMAP_BUILD_DIR=$build "$root/tools/spy.sh" --lcm-url "$2" >"$work/spy$1.log" 2>&1 &
+  DISPLAY=":$1" FLEETMAP_BUILD_DIR=$build "$root/ops/spy/fleetmap-spy" --lcm-url "$2" >"$work/spy$1.log" 2>&1 &
   pids+=($!)
 }
-spy 57 "$(url 239.255.76.67 "$port")"
-spy 58 "$(url 239.255.76.68 $((port + 1)))"
+spy 57 "$uplink"
+spy 58 "$downlink"
 echo "lcm_spy_screenshots: fleet and spies running; screenshots in $wait_s s"
 sleep "$wait_s"
 shot() {  # DISPLAY_NUMBER ROW CHANNEL PNG

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs CPack in a configured build folder whose packaged targets are built (target
 # fleetmap_packaged) and leaves exactly this version's .deb files in OUT_DIR (older ones of
-# these packages are removed). Used by ./run_package.sh and tests/deploy/package_test.sh.
+# these packages are removed). Used by ./run_package.sh and tests/integration/deploy/package_test.sh.
 #   scripts/make_debs.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build_dir=$(cd "${1:?usage: make_debs.sh BUILD_DIR OUT_DIR}" && pwd)

@@ -13,7 +13,7 @@ namespace fleetmap::vehicle_agent {
 // A stamp more than this before the last one is the vehicle's clock being set back (an NTP
 // step, a controller rebooted without a real-time clock), not a late message, s: it becomes
 // the new reference. Dropping it as out of order would stop localization until the clock
-// caught up again, an hour for an hour's step (tests/agent_node/clock_jump_test.cc).
+// caught up again, an hour for an hour's step (tests/vehicle_agent/node/clock_jump_test.cc).
 constexpr double kClockStepBackS = 2.0;
 
 // True when `stamp_s` is the clock set back from `last_s` (see kClockStepBackS).

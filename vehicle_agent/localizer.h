@@ -19,10 +19,12 @@
 #include "core/occupancy_grid.h"
 #include "core/odometry.h"
 #include "core/scan.h"
+#include "vehicle_agent/external_pose_track.h"
 #include "vehicle_agent/global_search.h"
 #include "vehicle_agent/input_guard.h"
 #include "vehicle_agent/likelihood_field.h"
 #include "vehicle_agent/localizer_options.h"
+#include "vehicle_agent/lost_watch.h"
 #include "vehicle_agent/odometry_path.h"
 #include "vehicle_agent/particle_set.h"
 
@@ -112,12 +114,27 @@ class Localizer {
   const core::Pose2& clean_odometry() const { return odometry_.clean_pose(); }
 
  private:
-  struct ExternalPose {
-    core::PoseEstimate pose;
-    core::Pose2 clean_odom;  // the tracker's clean odometry when it arrived
-  };
-
+  // The filter (localizer.cc).
   void TrackOdometry(const core::OdometrySample& odom);
+  bool AcceptScan(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
+  bool PassingThrough(double stamp_s);
+  bool FilterDue() const;
+  void FilterUpdate(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
+                    LocalizerStats& stats);
+  void Predict();
+  void PredictStep(const core::Pose2& delta);
+  void Weigh(LocalizerStats& stats);
+  void Resample();
+  bool FuseOrReinitialize();
+  void Restart(ParticleSet particles);
+  void ExtrapolateOdometry(double scan_stamp_s);
+  core::Pose2 OdomAtScan() const { return odometry_.clean_pose() * odom_to_scan_; }
+  core::Pose2 CurrentPose() const;
+  core::PoseEstimate Estimate(bool external);
+  core::Pose2 ExternalNow() const { return external_.Now(OdomAtScan()); }
+
+  // Global localization (localizer_global.cc): searches of the whole map, at the start and
+  // when lost, and the poses they found followed until one leads.
   // The global search for `scan` and the restart around what it found.
   void StartFromGlobalSearch(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
   // While the hypotheses are undecided and the last search may have left poses out: the scan
@@ -141,24 +158,6 @@ class Localizer {
                        LocalizerStats& stats);
   // The particles start at the hypothesis that won; until then the estimate is the best one.
   void FollowHypotheses();
-  double ExplainedShare(const core::Pose2& base_in_map, const core::Pose2& scanner_in_base) const;
-  bool AcceptScan(const core::LaserScan& scan, const core::Pose2& scanner_in_base);
-  bool PassingThrough(double stamp_s);
-  bool FilterDue() const;
-  void FilterUpdate(const core::LaserScan& scan, const core::Pose2& scanner_in_base,
-                    LocalizerStats& stats);
-  void Predict();
-  void PredictStep(const core::Pose2& delta);
-  void Weigh(LocalizerStats& stats);
-  void Resample();
-  bool FuseOrReinitialize();
-  void Restart(ParticleSet particles);
-  void ExtrapolateOdometry(double scan_stamp_s);
-  core::Pose2 OdomAtScan() const { return odometry_.clean_pose() * odom_to_scan_; }
-  core::Pose2 CurrentPose() const;
-  core::PoseEstimate Estimate(bool external);
-  core::Pose2 ExternalNow() const;
-  Eigen::Matrix3d ExternalCovariance() const;
 
   const LocalizerOptions options_;
   LikelihoodField field_;
@@ -176,10 +175,7 @@ class Localizer {
   OdometryPath path_;         // the clean odometry's way since clean_odom_at_update_
   core::Pose2 odom_to_scan_;  // the last odometry sample carried to the scan's stamp
   ScanGate scans_;
-  bool has_external_ = false;
-  bool external_fresh_ = false;   // arrived since the last filter update (kFuse)
-  bool external_lapsed_ = false;  // kPassThrough timed out and MCL took over
-  ExternalPose external_;
+  ExternalPoseTrack external_;
   core::PoseEstimate last_estimate_;        // the last finite one
   std::vector<Eigen::Vector2f> endpoints_;  // scratch
   std::vector<double> log_weights_;         // scratch
@@ -192,10 +188,7 @@ class Localizer {
   // of the hypotheses' travel.
   bool search_full_ = false;
   double searched_at_travel_m_ = 0.0;
-  bool lost_ = false;
-  double unexplained_since_s_ = std::numeric_limits<double>::quiet_NaN();  // NaN: explained
-  double next_lost_search_s_ = 0.0;
-  double lost_search_period_s_ = 0.0;
+  LostWatch lost_;
 };
 
 }  // namespace fleetmap::vehicle_agent

@@ -23,29 +23,31 @@
 // periodic keyframe), STATUS_<process_name> every status_period_s.
 // Bad input of any kind is counted by cause (node_counters.h), logged once per cause, and
 // changes nothing.
+//
+// Built from parts, each owning one job, wired here: uplink_gate.h (which messages get in),
+// temp_map_receiver.h (tiles into complete maps), map_committer.h (complete maps into the
+// current map, and the acknowledgement that earns), candidate_reports.h (the vehicles'
+// candidate reports), map_request_answerer.h (MAP_REQUEST, the periodic keyframe) and
+// map_publisher.h (everything sent).
 #pragma once
 
-#include <deque>
 #include <map>
 #include <memory>
-#include <optional>
 #include <string>
-#include <vector>
 
 #include "aggregator/aggregator.h"
-#include "aggregator/node/ack_schedule.h"
-#include "aggregator/node/handled_maps.h"
-#include "aggregator/node/held_maps.h"
+#include "aggregator/node/candidate_reports.h"
+#include "aggregator/node/map_committer.h"
+#include "aggregator/node/map_publisher.h"
+#include "aggregator/node/map_request_answerer.h"
 #include "aggregator/node/node_counters.h"
 #include "aggregator/node/node_io.h"
 #include "aggregator/node/node_options.h"
-#include "aggregator/node/request_queue.h"
+#include "aggregator/node/temp_map_receiver.h"
 #include "aggregator/node/tile_spool.h"
+#include "aggregator/node/uplink_gate.h"
 #include "aggregator/node/vehicle_limits.h"
-#include "auth/signer.h"
 #include "auth/verifier.h"
-#include "core/temp_map_tiles.h"
-#include "fleetmap/tempmap_tile_t.hpp"
 
 namespace fleetmap::aggregator::node {
 
@@ -68,102 +70,41 @@ class AggregatorNode {
   core::Status Snapshot() { return aggregator_.WriteSnapshot(); }
 
   // "running", or "persist_failed" after a journal write failed until one succeeds.
-  std::string state() const { return persist_failed_ ? "persist_failed" : "running"; }
+  std::string state() const { return committer_.persist_failed() ? "persist_failed" : "running"; }
   const Aggregator& aggregator() const { return aggregator_; }
   const NodeCounters& counters() const { return counters_; }
   // The largest message sent so far on each channel, bytes.
-  const std::map<std::string, size_t>& largest_messages() const { return largest_; }
-  size_t incomplete_maps() const { return incoming_.size(); }
+  const std::map<std::string, size_t>& largest_messages() const {
+    return publisher_.largest_messages();
+  }
+  size_t incomplete_maps() const { return receiver_.incomplete_maps(); }
   // A fleet key is configured: what is sent is signed, what is received must be.
-  bool authenticated() const { return verifier_.enabled(); }
-  const auth::AuthCounters& auth_counters() const { return verifier_.counters(); }
+  bool authenticated() const { return gate_.verifier().enabled(); }
+  const auth::AuthCounters& auth_counters() const { return gate_.verifier().counters(); }
   int throttled_vehicles() const { return limits_.throttled_vehicles(); }
   // The line the process ends with (map_hash.h).
   std::string FinalLine() const;
 
  private:
-  struct Incoming {
-    int32_t tile_count = 0;
-    std::map<int32_t, std::vector<uint8_t>> unspooled;  // received, not yet on disk
-  };
-  struct Retry {
-    core::TempMap map;
-    int32_t tile_count = 0;
-  };
-
-  AggregatorNode(Aggregator aggregator, AggregatorNodeOptions options, Publisher* publisher,
-                 LogSink log, double now_s);
-  void RestoreSpool(double now_s);
-
-  void OnTile(const std::string& channel, const void* data, int size, double now_s);
-  void AddTile(const fleetmap::tempmap_tile_t& msg, const core::TempMapTile& tile,
-               const std::vector<uint8_t>& bytes, bool from_spool, double now_s);
-  // A complete map: merged, or held behind its vehicle's earlier ones or over its merge rate.
-  void Complete(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
-                double now_s);
-  void Merge(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
-             double now_s);
-  // False when the journal write failed (nothing changed, nothing acknowledged).
-  bool TryMerge(const MapKey& key, const core::TempMap& map, int32_t tile_count, double map_s,
-                double now_s);
-  void ReleaseHeld(double now_s);
-  // Maps whose journal write failed wait, with every map completed after them, in arrival
-  // order (a replay of the uplink merges them in that order too), and are merged when the
-  // journal writes again: tried every kPersistRetryS and at each resend of one of them.
-  bool Unpersisted(const MapKey& key) const;
-  void KeepUnpersisted(HeldMap map, double now_s);
-  void RetryUnpersisted(double now_s);
-  static constexpr double kPersistRetryS = 1.0;
-  void OnRequest(const void* data, int size);
-  // A vehicle's CANDIDATES_FREE_<id>: the candidates it saw empty are dropped (a new version),
-  // and the new set goes out.
-  void OnSeenFree(const std::string& channel, const void* data, int size, double now_s);
-  // A vehicle's CANDIDATES_HELD_<id>: the candidates it saw held long enough are added.
-  void OnHeld(const std::string& channel, const void* data, int size, double now_s);
-  // Decoded, from the vehicle whose channel it came on; refused (counted, logged) otherwise.
-  template <typename Message>
-  std::optional<Message> VehicleReport(const std::string& channel, const void* data, int size,
-                                       const char* prefix, const std::string& name);
-  void ReportApplied(const std::string& vehicle, const core::Result<std::vector<int64_t>>& cells,
-                     int64_t& counter, const std::string& what, double now_s);
-  void Refuse(const std::string& cause, int64_t& counter, const std::string& line);
-  bool Throttled(const std::string& vehicle, double now_s);
-  int PendingMaps(const std::string& vehicle) const;
-
-  void SendPending(const MapKey& key, double now_s);
-  void SendFinal(const MapKey& key, int32_t tile_count, int8_t outcome, const std::string& reason,
-                 uint64_t version, double now_s);
-  void SendRequested(double now_s);
-  void SendKeyframe(const std::vector<int32_t>* only, double now_s);
-  void SendDelta(const MapDelta& delta, double now_s);
-  void SendCandidates(double now_s);
+  AggregatorNode(Aggregator aggregator, AggregatorNodeOptions options, TileSpool spool,
+                 Publisher* publisher, LogSink log, double now_s);
   void SendStatus(double now_s);
-  void DropStale(double now_s);
-  template <typename T>
-  void Send(Link link, const std::string& channel, const T& message);
 
-  Aggregator aggregator_;
+  // Shared by the parts, declared before them: they hold references.
   const AggregatorNodeOptions options_;
-  Publisher* const publisher_;
-  CauseLog log_;
-  core::TempMapAssembler assembler_;
-  HandledMaps handled_;
-  AckSchedule acks_;
-  TileSpool spool_;
-  RequestQueue requests_;
-  std::map<MapKey, Incoming> incoming_;  // maps being assembled
-  std::map<MapKey, Retry> retry_;        // complete, over the rate with no room to hold it
-  std::deque<HeldMap> unpersisted_;      // complete, waiting for the journal (arrival order)
-  double next_persist_try_s_ = 0.0;
-  bool persist_failed_ = false;
-  double next_status_s_;
-  double next_keyframe_s_;
+  Aggregator aggregator_;  // changed by the committer and the candidate reports only
   NodeCounters counters_;
-  std::map<std::string, size_t> largest_;
-  auth::Signer signer_;
-  auth::Verifier verifier_;
-  VehicleLimits limits_;
-  HeldMaps held_;  // complete, over the vehicle's merge rate
+  CauseLog log_;
+  TileSpool spool_;       // filled by the receiver, emptied by the committer
+  VehicleLimits limits_;  // tile rate (receiver) and merge rate (committer) of each vehicle
+
+  UplinkGate gate_;
+  MapPublisher publisher_;
+  MapCommitter committer_;
+  CandidateReports candidate_reports_;
+  MapRequestAnswerer answerer_;
+  TempMapReceiver receiver_;
+  double next_status_s_;
 };
 
 }  // namespace fleetmap::aggregator::node

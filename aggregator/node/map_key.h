@@ -1,11 +1,16 @@
 // Which temporary map: a vehicle's id and its sequence number for the map.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <tuple>
 
 namespace fleetmap::aggregator::node {
+
+// Vehicle ids come from the network: a log line quotes at most this much of one, and a
+// MAP_REQUEST naming a longer one is refused. The journal's bound (merge_commit.h) is wider.
+constexpr size_t kMaxUplinkVehicleIdBytes = 64;
 
 struct MapKey {
   std::string vehicle_id;

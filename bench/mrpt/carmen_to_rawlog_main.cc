@@ -25,7 +25,7 @@
 #include <string>
 
 #include "core/command_line.h"
-#include "tools/carmen/carmen_log.h"
+#include "eval/carmen/carmen_log.h"
 
 namespace {
 
@@ -41,7 +41,7 @@ mrpt::poses::CPose2D ToMrpt(const core::Pose2& p) {
 
 // Beam i of `scan` is at angle_min + i * increment; MRPT spaces its beams evenly over
 // `aperture` centred on the sensor's heading, so the heading carries the offset.
-mrpt::obs::CObservation2DRangeScan::Ptr ToMrpt(const carmen::LaserRecord& r) {
+mrpt::obs::CObservation2DRangeScan::Ptr ToMrpt(const eval::carmen::LaserRecord& r) {
   const core::LaserScan& scan = r.scan;
   auto obs = std::make_shared<mrpt::obs::CObservation2DRangeScan>();
   obs->sensorLabel = "LASER";
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   app.add_option("RAWLOG", rawlog_path, "the MRPT rawlog to write")->required();
   app.add_option("STAMPS", stamps_path, "the time stamps to write")->required();
   if (const auto exit_status = core::ParseCommandLine(app, argc, argv)) return *exit_status;
-  auto log = carmen::ReadCarmenLog(log_path);
+  auto log = eval::carmen::ReadCarmenLog(log_path);
   if (!log.ok())
     return std::fprintf(stderr, "carmen2rawlog: %s\n", log.status().ToString().c_str()), 1;
   FILE* stamps = std::fopen(stamps_path.c_str(), "w");
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
     auto archive = mrpt::serialization::archiveFrom(out);
     mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motion;  // MRPT's defaults
     for (size_t i = 0; i < log->lasers.size(); ++i) {
-      const carmen::LaserRecord& r = log->lasers[i];
+      const eval::carmen::LaserRecord& r = log->lasers[i];
       const core::Pose2 delta =
           i == 0 ? core::Pose2() : core::Between(log->lasers[i - 1].odom_pose, r.odom_pose);
       mrpt::obs::CActionRobotMovement2D move;

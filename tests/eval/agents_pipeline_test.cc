@@ -1,9 +1,9 @@
-#include "tools/eval/agents_pipeline.h"
+#include "eval/agents_pipeline.h"
 
 #include <gtest/gtest.h>
 
+#include "eval/evaluator.h"
 #include "tests/sim/sim_test_util.h"
-#include "tools/eval/evaluator.h"
 
 namespace fleetmap::eval {
 namespace {

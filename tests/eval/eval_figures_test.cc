@@ -1,4 +1,4 @@
-#include "tools/eval/eval_figures.h"
+#include "eval/eval_figures.h"
 
 #include <gtest/gtest.h>
 

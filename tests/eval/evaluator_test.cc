@@ -1,12 +1,12 @@
-#include "tools/eval/evaluator.h"
+#include "eval/evaluator.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "eval/pipeline.h"
 #include "tests/sim/sim_test_util.h"
-#include "tools/eval/pipeline.h"
 
 namespace fleetmap::eval {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/eval/global_localization.h"
+#include "eval/global_localization.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "tools/eval/tempmap_drift.h"
+#include "eval/tempmap_drift.h"
 
 #include <gtest/gtest.h>
 

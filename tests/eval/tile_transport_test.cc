@@ -1,4 +1,4 @@
-#include "tools/eval/tile_transport.h"
+#include "eval/tile_transport.h"
 
 #include <gtest/gtest.h>
 

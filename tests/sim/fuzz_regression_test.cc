@@ -1,11 +1,11 @@
 // Scenarios on which fuzz/scenario_fuzz.cc found ParseScenario throwing (an uncaught yaml-cpp
 // exception aborts fleetmap-sim); the fuzzer's own inputs are in tests/data/fuzz/scenario/.
-// Fixed in core/yaml_reader.{h,cc} and tools/sim/scenario_loader.cc.
+// Fixed in core/yaml_reader.{h,cc} and sim/scenario_loader.cc.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "core/file_io.h"
-#include "tools/sim/scenario.h"
+#include "sim/scenario.h"
 
 namespace fleetmap::sim {
 namespace {

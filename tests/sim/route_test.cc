@@ -1,4 +1,4 @@
-#include "tools/sim/route.h"
+#include "sim/route.h"
 
 #include <gtest/gtest.h>
 

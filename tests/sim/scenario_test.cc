@@ -1,12 +1,12 @@
-#include "tools/sim/scenario.h"
+#include "sim/scenario.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "sim/world.h"
 #include "tests/sim/sim_test_util.h"
-#include "tools/sim/world.h"
 
 namespace fleetmap::sim {
 namespace {

@@ -32,7 +32,7 @@ vehicles:
 )";
 
 inline std::string LivingLabDir() {
-  return std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
+  return std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/";
 }
 
 }  // namespace fleetmap::sim::testing

@@ -1,4 +1,4 @@
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 
 #include <gtest/gtest.h>
 

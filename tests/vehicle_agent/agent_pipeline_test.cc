@@ -7,7 +7,7 @@
 #include <functional>
 
 #include "core/map_io.h"
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace fleetmap::vehicle_agent {
 namespace {
@@ -48,7 +48,7 @@ DriveResult Drive(
     const std::function<void(AgentPipelineOptions&)>& configure = [](AgentPipelineOptions&) {},
     const char* scenario_text = kScenario,
     const std::function<void(double t_s, AgentPipeline&)>& before_scan = {}) {
-  const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
+  const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/";
   const auto scenario = sim::ParseScenario(scenario_text, dir + "pipeline_test.yaml").value();
   auto map = core::LoadMapServerMap(scenario.map_yaml).value();
   const sim::World world = sim::World::Create(scenario, map.grid).value();

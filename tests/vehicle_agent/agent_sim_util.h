@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 #include "vehicle_agent/divergence.h"
 #include "vehicle_agent/localizer.h"
 
 namespace fleetmap::vehicle_agent::sim_testing {
 
 inline std::string LivingLabDir() {
-  return std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
+  return std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/";
 }
 
 inline sim::World LoadWorld(const std::string& scenario_file) {

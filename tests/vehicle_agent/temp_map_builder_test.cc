@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/map_io.h"
-#include "tools/sim/simulator.h"
+#include "sim/simulator.h"
 
 namespace fleetmap::vehicle_agent {
 namespace {
@@ -22,7 +22,7 @@ vehicles:
 )";
 
 sim::World LivingLab() {
-  const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/tools/sim/worlds/livinglab/";
+  const std::string dir = std::string(FLEETMAP_SOURCE_DIR) + "/sim/worlds/livinglab/";
   auto scenario = sim::ParseScenario(kScenario, dir + "builder_test.yaml").value();
   auto map = core::LoadMapServerMap(scenario.map_yaml).value();
   return sim::World::Create(scenario, std::move(map.grid)).value();

@@ -33,6 +33,29 @@ fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t
   return r;
 }
 
+std::vector<fleetmap::candidates_free_t> SeenFreeMessages(const std::string& vehicle_id,
+                                                          int32_t map_version,
+                                                          const CandidatesSeenFree& seen,
+                                                          int64_t utime) {
+  std::vector<fleetmap::candidates_free_t> out;
+  fleetmap::candidates_free_t m;
+  m.utime = utime;
+  m.vehicle_id = vehicle_id;
+  m.map_version = map_version;
+  m.first_pass_utime = lcmtypes::ToUtime(seen.first_pass_s);
+  m.last_pass_utime = lcmtypes::ToUtime(seen.last_pass_s);
+  for (size_t begin = 0; begin < seen.cells.size();
+       begin += lcmtypes::kMaxCandidateCellsPerMessage) {
+    const size_t end =
+        std::min(seen.cells.size(), begin + size_t{lcmtypes::kMaxCandidateCellsPerMessage});
+    m.cells.assign(seen.cells.begin() + static_cast<std::ptrdiff_t>(begin),
+                   seen.cells.begin() + static_cast<std::ptrdiff_t>(end));
+    m.num_cells = static_cast<int32_t>(m.cells.size());
+    out.push_back(m);
+  }
+  return out;
+}
+
 std::vector<fleetmap::candidates_held_t> HeldMessages(const std::string& vehicle_id,
                                                       int32_t map_version,
                                                       const CandidatesHeld& held, int64_t utime) {

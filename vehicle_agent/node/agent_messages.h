@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "fleetmap/candidates_free_t.hpp"
 #include "fleetmap/candidates_held_t.hpp"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/map_request_t.hpp"
@@ -21,6 +22,12 @@ fleetmap::divergence_t DivergenceMessage(const std::string& vehicle_id, double s
 // MAP_REQUEST for the whole map (or the deltas since have_version, -1: none held).
 fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t have_version,
                                           int64_t utime);
+// CANDIDATES_FREE_<id>: the candidates seen free in messages of at most
+// kMaxCandidateCellsPerMessage cells, the passes' times as scan time (as maps carry it).
+std::vector<fleetmap::candidates_free_t> SeenFreeMessages(const std::string& vehicle_id,
+                                                          int32_t map_version,
+                                                          const CandidatesSeenFree& seen,
+                                                          int64_t utime);
 // CANDIDATES_HELD_<id>: the held candidates in messages of at most kMaxHeldCellsPerMessage
 // cells, times as milliseconds after the earliest hold's start.
 std::vector<fleetmap::candidates_held_t> HeldMessages(const std::string& vehicle_id,

@@ -22,9 +22,15 @@
 #include "auth/verifier.h"
 #include "vehicle_agent/node/agent_counters.h"
 #include "vehicle_agent/node/agent_node_options.h"
+#include "vehicle_agent/node/agent_sender.h"
 #include "vehicle_agent/node/candidate_parts.h"
+#include "vehicle_agent/node/map_updates.h"
+#include "vehicle_agent/node/message_checks.h"
 #include "vehicle_agent/node/node_io.h"
+#include "vehicle_agent/node/pose_start.h"
+#include "vehicle_agent/node/sensor_intake.h"
 #include "vehicle_agent/node/sequence_store.h"
+#include "vehicle_agent/node/tempmap_uplink.h"
 #include "vehicle_agent/node/tile_send_queue.h"
 
 namespace fleetmap::vehicle_agent::node {
@@ -37,6 +43,9 @@ class AgentNode {
   static core::Result<std::unique_ptr<AgentNode>> Create(
       AgentNodeOptions options, Publisher* publisher, LogSink log,
       std::optional<core::OccupancyGrid> static_map, double now_s);
+  // Its parts hold pointers to its log and counters: it stays where it was made.
+  AgentNode(const AgentNode&) = delete;
+  AgentNode& operator=(const AgentNode&) = delete;
 
   // What the edge must subscribe to for this configuration.
   std::vector<Subscription> Subscriptions() const;
@@ -61,10 +70,10 @@ class AgentNode {
 
   // "waiting_for_map", "waiting_for_pose", "building" (a temporary map) or "running".
   std::string state() const;
-  int32_t map_version() const { return map_applied_ ? applied_version_ : -1; }
-  const MapFollower& map() const { return follower_; }
+  int32_t map_version() const { return maps_.version_in_use(); }
+  const MapFollower& map() const { return maps_.follower(); }
   const AgentPipeline& pipeline() const { return pipeline_; }
-  const TempMapOutbox& outbox() const { return outbox_; }
+  const TempMapOutbox& outbox() const { return uplink_.outbox(); }
   const AgentNodeCounters& counters() const { return counters_; }
   NamedCounters AllCounters() const;
   const AgentNodeOptions& options() const { return options_; }
@@ -75,76 +84,41 @@ class AgentNode {
  private:
   AgentNode(AgentNodeOptions options, Publisher* publisher, LogSink log, double now_s);
 
-  // Channel handlers: decode, check, hand on.
-  void OnScan(const void* data, int size);
-  void OnOdometry(const void* data, int size);
-  void OnExternalPose(const void* data, int size);
+  // Downlink handlers: decode, check, hand on.
   void OnAck(const void* data, int size);
   void OnDelta(const void* data, int size);
   void OnKeyframe(const void* data, int size);
   void OnAggregatorStatus(const void* data, int size, double now_s);
   void OnCandidates(const void* data, int size);
-  void SendSeenFree(double now_s);
-  template <typename T>
-  std::optional<T> Decode(const std::string& channel, const void* data, int size);
-  void Malformed(const std::string& channel, const core::Status& why);
-  bool OurVehicle(const std::string& channel, const std::string& vehicle_id);
-  void MapTile(const std::string& channel, const core::Result<bool>& added);
 
+  // A completed map version goes to the pipeline; the first one starts the filter (PoseStart).
   void ApplyMap();
   void Process(const SensorInput& input, double now_s);
   void ProcessScan(const core::LaserScan& scan, double now_s);
-  void ProcessExternalPose(const core::PoseEstimate& pose);
-  void InitializeFromExternal(const core::PoseEstimate& pose);
-  void ReserveSequences(int32_t from);  // stores `from` + a block as the next number
-  // At the first odometry sample: the kept pose, when the vehicle has not moved since.
-  void ResumeFromKeptPose(const core::Pose2& odometry);
-  // Keeps the pose of a well-localized vehicle that moved, at most once per period.
-  void KeepPose(const AgentStep& step, double now_s, bool now);
   // Lost, found again and relocalized: said once per change, and in the counters.
   void ReportLocalization(const LocalizerStats& stats);
-  void Keep(const core::TempMap& map, double now_s);
   // Due tiles join the send queue; as many leave as the pacer allows (all of them: at exit).
   void SendTiles(double now_s, bool all = false);
-  void SendMapRequest(double now_s);
+  void SendCandidates(double now_s);
   void SendStatus(double now_s);
-  void PublishStep(const core::LaserScan& scan, const AgentStep& step);
-  template <typename T>
-  void Send(Link link, const std::string& channel, const T& message);
-  int64_t Utime(double now_s) const;
 
+  // The parts below hold pointers to log_ and counters_, which are declared first.
   const AgentNodeOptions options_;
-  Publisher* const publisher_;
   CauseLog log_;
-  int64_t answered_recovery_ = 0;  // the aggregator's last recovery this vehicle answered
-  SequenceStore sequences_;
-  PoseStore poses_;  // the last good pose (pose_store.h)
-  // Numbers below this are on disk as used (reserved kSequenceBlock at a time).
-  int32_t sequences_reserved_ = 1;
+  AgentNodeCounters counters_;
+  MessageChecks checks_;
+  AgentSender sender_;
   AgentPipeline pipeline_;
-  TempMapOutbox outbox_;
-  MapFollower follower_;
-  InputQueue queue_;
-  TileSendQueue sends_;
-  bool map_dirty_ = false;  // the follower has a version the pipeline does not
-  bool map_applied_ = false;
-  int32_t applied_version_ = -1;
-  bool pose_initialized_ = false;
-  // The kept pose (pose_store.h): read at start, used or not at the first odometry sample.
-  std::optional<KeptPose> kept_pose_;
-  std::optional<core::Pose2> odometry_;  // the last sample's pose
-  std::optional<KeptPose> last_kept_;    // stored by this run
-  double next_keep_s_ = 0.0;
-  std::optional<AgentStep> last_step_;                // the pose kept at exit
-  std::optional<core::PoseEstimate> early_external_;  // before the first map
+  TempMapUplink uplink_;
+  MapUpdates maps_;
+  PoseStart pose_;  // the filter's first pose, and the pose kept for the next start
+  SensorIntake intake_;
   bool building_ = false;
   CandidateParts candidates_;
-  double next_seen_free_s_ = 0.0;
+  double next_candidates_s_ = 0.0;
   double next_status_s_;
-  AgentNodeCounters counters_;
   NamedCounters input_counters_;
   NamedCounters process_counters_;
-  auth::Signer signer_;
   auth::Verifier verifier_;
 };
 

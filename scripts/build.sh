@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The one install-and-build step of every run_*.sh: installs what is missing
+# (scripts/install_deps.sh), configures BUILD_DIR with Ninja and builds it, or only TARGETs.
+#   scripts/build.sh BUILD_DIR [-DNAME=VALUE ...] [--target TARGET ...]
+# The build type is RelWithDebInfo unless a -DCMAKE_BUILD_TYPE says otherwise; with CI=true
+# warnings are errors (FLEETMAP_WERROR, unless a -DFLEETMAP_WERROR says otherwise).
+# FLEETMAP_JOBS sets the build's parallelism (default: every core). The build's progress goes
+# to stderr, so that a caller's stdout holds only its figures.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir=${1:?usage: scripts/build.sh BUILD_DIR [-DNAME=VALUE ...] [--target TARGET ...]}
+shift
+# Defaults first: cmake keeps the last of two -D of one name, so the caller's win.
+cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+[[ ${CI:-} == true ]] && cmake_args+=(-DFLEETMAP_WERROR=ON)
+targets=()
+while (($#)); do
+  case $1 in
+    -D*) cmake_args+=("$1"); shift ;;
+    --target) targets+=("${2:?--target needs a name}"); shift 2 ;;
+    *) echo "build.sh: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+scripts/install_deps.sh
+cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
+cmake --build "$build_dir" -j "${FLEETMAP_JOBS:-$(nproc)}" ${targets[@]:+--target "${targets[@]}"} >&2

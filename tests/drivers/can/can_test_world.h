@@ -1,0 +1,38 @@
+// A small simulated world for the CAN tests: a 10 m x 6 m room, one vehicle driving a loop
+// with four turns, odometry at 50 Hz (the SYNC rate of the encoded drive nodes).
+#pragma once
+
+#include <string>
+
+#include "core/occupancy_grid.h"
+#include "sim/world.h"
+
+namespace fleetmap::sim::can::testing {
+
+inline core::OccupancyGrid Room() {
+  core::OccupancyGrid grid(core::GridGeometry(0.05, 200, 120));
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 200; ++x)
+      grid.SetState({x, y}, (x == 0 || y == 0 || x == 199 || y == 119) ? core::CellState::kOccupied
+                                                                       : core::CellState::kFree);
+  return grid;
+}
+
+constexpr const char* kLoopScenario = R"(
+map: room.yaml
+duration_s: 60
+seed: 7
+vehicles:
+  - id: agv
+    scanner: TiM571
+    route: [[1, 1], [8, 1], [8, 5], [1, 5]]
+    loop: true
+    speed_mps: 1.0
+    angular_speed_radps: 1.0
+)";
+
+inline sim::World LoopWorld() {
+  return sim::World::Create(sim::ParseScenario(kLoopScenario, "loop.yaml").value(), Room()).value();
+}
+
+}  // namespace fleetmap::sim::can::testing
