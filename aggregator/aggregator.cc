@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "aggregator/alignment_steps.h"
+#include "aggregator/alignment/alignment_steps.h"
 
 namespace fleetmap::aggregator {
 namespace {

@@ -14,13 +14,13 @@
 #include <optional>
 #include <string>
 
-#include "aggregator/alignment_confidence.h"
+#include "aggregator/alignment/alignment_confidence.h"
+#include "aggregator/alignment/placement.h"
+#include "aggregator/alignment/static_features.h"
 #include "aggregator/candidates_seen_free.h"
 #include "aggregator/current_map_store.h"
-#include "aggregator/map_persistence.h"
 #include "aggregator/merge.h"
-#include "aggregator/placement.h"
-#include "aggregator/static_features.h"
+#include "aggregator/persistence/map_persistence.h"
 
 namespace fleetmap::aggregator {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "aggregator/merge.h"
-#include "core/seen_free_cells.h"
+#include "core/map/seen_free_cells.h"
 
 namespace fleetmap::aggregator {
 

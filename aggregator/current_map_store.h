@@ -1,5 +1,5 @@
 // The versioned current map: the static map plus every merged change. The version grows by
-// one per accepted merge; the map is cut into codec tiles (core/tile_delta.h), each with the
+// one per accepted merge; the map is cut into codec tiles (core/codec/tile_delta.h), each with the
 // version that last changed it, so any vehicle can be brought up to date from the version it
 // has; the delta from v to v+1 of the latest merges is kept ready to send, and a keyframe
 // (every tile) is encoded on request. The store checks every commit before it applies it,
@@ -12,7 +12,7 @@
 #include "aggregator/merge.h"
 #include "aggregator/merge_commit.h"
 #include "aggregator/provenance.h"
-#include "core/tile_delta.h"
+#include "core/codec/tile_delta.h"
 
 namespace fleetmap::aggregator {
 

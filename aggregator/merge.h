@@ -20,9 +20,9 @@
 #include <map>
 #include <vector>
 
+#include "aggregator/alignment/placement.h"
 #include "aggregator/merge_commit.h"
-#include "aggregator/placement.h"
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 
 namespace fleetmap::aggregator {
 
@@ -81,7 +81,7 @@ struct MergeOptions {
   // this is renewed by a new sighting, not confirmed. Long enough for the next pass of a
   // vehicle whose first pass saw the pallet for less than confirm_min_gap_s (an office
   // corridor); a person who comes back to the same place is no candidate any more once a
-  // map in between saw the place free, or saw the person leave it (core/moving_cells.h).
+  // map in between saw the place free, or saw the person leave it (core/map/moving_cells.h).
   double confirm_max_gap_s = 120.0;
   // Whether a watch of confirm_min_gap_s confirms (see above). Off by default: on the world
   // suite it is about even, it serves the single-vehicle scenarios, and in a small room it

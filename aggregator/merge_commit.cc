@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/byte_io.h"
+#include "core/io/byte_io.h"
 
 namespace fleetmap::aggregator {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "bench/figure_reporter.h"
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "sim/simulator.h"
 #include "vehicle_agent/agent_pipeline.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "bench/figure_reporter.h"
-#include "core/tile_delta.h"
+#include "core/codec/tile_delta.h"
 #include "sim/livinglab_map.h"
 
 namespace fleetmap::bench {

@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "bench/figure_reporter.h"
-#include "core/ray_caster.h"
+#include "core/map/ray_caster.h"
 #include "sim/simulator.h"
 #include "vehicle_agent/divergence.h"
-#include "vehicle_agent/localizer.h"
+#include "vehicle_agent/localization/localizer.h"
 
 namespace fleetmap::bench {
 namespace {

@@ -10,10 +10,10 @@
 #include <random>
 
 #include "aggregator/aggregator.h"
-#include "aggregator/journal.h"
+#include "aggregator/persistence/journal.h"
 #include "bench/figure_reporter.h"
-#include "core/ray_caster.h"
-#include "core/scan_inserter.h"
+#include "core/map/ray_caster.h"
+#include "core/map/scan_inserter.h"
 #include "sim/livinglab_map.h"
 
 namespace fleetmap::bench {

@@ -8,7 +8,7 @@
 
 #include "bench/figure_reporter.h"
 #include "sim/simulator.h"
-#include "vehicle_agent/temp_map_builder.h"
+#include "vehicle_agent/mapping/temp_map_builder.h"
 
 namespace fleetmap::bench {
 namespace {

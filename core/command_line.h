@@ -13,7 +13,7 @@
 #include <optional>
 #include <string>
 
-#include "core/number_text.h"
+#include "core/io/number_text.h"
 #include "core/version.h"
 
 namespace fleetmap::core {

@@ -5,7 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 
 namespace fleetmap::eval {
 namespace {

@@ -9,10 +9,10 @@
 
 #include "aggregator/node/node_config.h"
 #include "auth/key.h"
-#include "core/codecs/map_render.h"
 #include "core/command_line.h"
-#include "core/file_io.h"
-#include "core/map_io.h"
+#include "core/image/map_render.h"
+#include "core/io/file_io.h"
+#include "core/map/map_io.h"
 #include "eval/agents_pipeline.h"
 #include "eval/eval_figures.h"
 #include "eval/pipeline.h"

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "sim/simulator.h"
-#include "vehicle_agent/localizer.h"
+#include "vehicle_agent/localization/localizer.h"
 
 namespace fleetmap::eval {
 

@@ -1,6 +1,6 @@
 // How well a vehicle finds itself on a known map without a pose (global localization,
-// vehicle_agent/global_search.h), or when it was carried off (the kidnapped robot: it holds a
-// confident pose kidnap_m away from the truth): at start poses spread over the scenario's
+// vehicle_agent/localization/global_search.h), or when it was carried off (the kidnapped robot: it
+// holds a confident pose kidnap_m away from the truth): at start poses spread over the scenario's
 // routes and times, each localizer from its first scan on; a start succeeds when the
 // estimate comes within tolerance within `drive_s` and stays there for `hold_s` more. One
 // pass of the simulator serves every start.
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "sim/world.h"
-#include "vehicle_agent/localizer_options.h"
+#include "vehicle_agent/localization/localizer_options.h"
 
 namespace fleetmap::eval {
 

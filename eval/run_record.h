@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 
 namespace fleetmap::eval {
 

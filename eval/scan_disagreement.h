@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 #include "core/scan.h"
 
 namespace fleetmap::eval {

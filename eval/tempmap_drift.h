@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
+#include "core/map/temp_map.h"
 #include "core/pose2.h"
-#include "core/temp_map.h"
 
 namespace fleetmap::eval {
 

@@ -1,6 +1,6 @@
 #include "eval/tile_transport.h"
 
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 
 namespace fleetmap::eval {
 

@@ -1,11 +1,11 @@
 // What the aggregator process receives of a temporary map: the map cut into TEMPMAP tiles
-// (core/temp_map_tiles.h: int8 log-odds in steps of 0.05, the header fields) and put together
+// (core/codec/temp_map_tiles.h: int8 log-odds in steps of 0.05, the header fields) and put together
 // again by the assembler. The in-process pipeline merges exactly this, so the evaluation
 // scores the evidence that really travels over LCM (quantised log-odds, no trajectory), not
 // the vehicle's float grid.
 #pragma once
 
-#include "core/temp_map.h"
+#include "core/map/temp_map.h"
 
 namespace fleetmap::eval {
 

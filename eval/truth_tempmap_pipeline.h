@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "aggregator/aggregator.h"
-#include "core/scan_inserter.h"
+#include "core/map/scan_inserter.h"
 #include "eval/pipeline.h"
 #include "eval/scan_disagreement.h"
 #include "vehicle_agent/candidate_watch.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/crc32.h"
+#include "core/io/crc32.h"
 #include "drivers/sick/cola_frame.h"
 #include "drivers/sick/s300_telegram.h"
 

@@ -11,7 +11,7 @@
 #include <exception>
 #include <string>
 
-#include "core/map_codec.h"
+#include "core/codec/map_codec.h"
 #include "core/result.h"
 #include "fleetmap/map_tile_t.hpp"
 #include "fuzz/checksum_repair.h"

@@ -1,7 +1,7 @@
 // MAP_DELTA as a vehicle receives it: one map_delta_t payload, decoded, validated
 // (lcmtypes/transport_convert.h) and applied to a replica seeded with a small map at the
 // delta's base version, so that a one-tile delta is applied at once.
-#include "core/map_replica.h"
+#include "core/map/map_replica.h"
 #include "fuzz/fuzz_check.h"
 #include "fuzz/lcm_bytes.h"
 #include "lcmtypes/convert.h"

@@ -1,7 +1,7 @@
 // MAP_KEYFRAME as a vehicle receives it: one map_keyframe_t payload, decoded, validated
 // (lcmtypes/transport_convert.h) and handed to a map replica. A keyframe of one tile completes
 // the map, so the replica's whole keyframe path runs.
-#include "core/map_replica.h"
+#include "core/map/map_replica.h"
 #include "fuzz/fuzz_check.h"
 #include "fuzz/lcm_bytes.h"
 #include "lcmtypes/convert.h"

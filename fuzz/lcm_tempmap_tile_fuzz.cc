@@ -1,6 +1,6 @@
 // TEMPMAP_<vehicle> as the aggregator receives it: one tempmap_tile_t payload, decoded,
 // validated (lcmtypes/transport_convert.h) and handed to a temporary-map assembler.
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 #include "fuzz/fuzz_check.h"
 #include "fuzz/lcm_bytes.h"
 #include "lcmtypes/convert.h"

@@ -1,8 +1,8 @@
-// The map codec (core/map_codec.h): any bytes as a codec frame, as they come out of a tile
+// The map codec (core/codec/map_codec.h): any bytes as a codec frame, as they come out of a tile
 // message. A frame that decodes must write into a grid that holds its window, be refused by one
 // that does not (leaving it untouched), and survive a re-encoding with its own packing and
 // compression: encode(decode(x)) decodes to the same values.
-#include "core/map_codec.h"
+#include "core/codec/map_codec.h"
 #include "fuzz/checksum_repair.h"
 #include "fuzz/fuzz_check.h"
 

@@ -1,4 +1,4 @@
-// map_server maps (core/map_io.h): a YAML and its PGM image (map_yaml_pgm_input.h) written to a
+// map_server maps (core/map/map_io.h): a YAML and its PGM image (map_yaml_pgm_input.h) written to a
 // scratch folder and loaded with LoadMapServerMap, as every process loads the static map. Any
 // YAML is parsed; the image is only loaded when the YAML names the scratch map.pgm, so that
 // fuzzed paths never make the target read other files. A map that loads has the image's size,
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "fuzz/fuzz_check.h"
 #include "fuzz/map_yaml_pgm_input.h"
 

@@ -2,7 +2,7 @@
 // map_keyframe_t / map_delta_t payloads, told apart by their fingerprints, checksums repaired):
 // keyframes interrupted by newer ones, deltas out of order, gaps, duplicates, corrupt tiles.
 // A replica that starts with a delta is seeded with a small static map at version 0.
-#include "core/map_replica.h"
+#include "core/map/map_replica.h"
 #include "fuzz/fuzz_check.h"
 #include "fuzz/lcm_bytes.h"
 #include "lcmtypes/transport_convert.h"

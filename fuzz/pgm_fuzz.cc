@@ -1,7 +1,7 @@
-// PGM images (core/pgm.h), the image half of a map_server map: any bytes, read strictly and
+// PGM images (core/map/pgm.h), the image half of a map_server map: any bytes, read strictly and
 // leniently. An image that decodes has width * height pixels, and writing it (P5 and P2) and
 // reading that back gives the same image.
-#include "core/pgm.h"
+#include "core/map/pgm.h"
 #include "fuzz/fuzz_check.h"
 
 namespace fleetmap::fuzz {

@@ -2,8 +2,8 @@
 // maps written by SaveMapServerMap in every mode (YAML + PGM), and the shipped scenarios.
 #include <unistd.h>
 
-#include "core/file_io.h"
-#include "core/map_io.h"
+#include "core/io/file_io.h"
+#include "core/map/map_io.h"
 #include "fuzz/map_yaml_pgm_input.h"
 #include "fuzz/seed_sources.h"
 

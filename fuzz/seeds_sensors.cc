@@ -3,7 +3,7 @@
 // telegrams, so that every field the parsers know occurs in some seed.
 #include <zlib.h>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "drivers/can/candump_log.h"
 #include "drivers/sick/commands.h"
 #include "drivers/sick/scan_conversion.h"

@@ -1,7 +1,7 @@
 // Seeds of the map transport targets: what the agent and the aggregator actually send, made
 // by the same encoders (SplitTempMap, EncodeAllTiles, EncodeChangedTiles, ToMessage).
-#include "core/temp_map_file.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
+#include "core/map/temp_map_file.h"
 #include "fuzz/lcm_bytes.h"
 #include "fuzz/seed_sources.h"
 #include "fuzz/tile_list_input.h"

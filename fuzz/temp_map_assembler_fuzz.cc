@@ -3,7 +3,7 @@
 // several maps interleaved, repeated, contradicting each other, beyond the pending-map limit.
 #include <set>
 
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 #include "fuzz/fuzz_check.h"
 #include "fuzz/lcm_bytes.h"
 #include "lcmtypes/transport_convert.h"

@@ -1,7 +1,7 @@
-// Temporary-map files (core/temp_map_file.h), what an agent reads back from its outbox after a
+// Temporary-map files (core/map/temp_map_file.h), what an agent reads back from its outbox after a
 // restart: any bytes, as they are and with the file's CRC repaired. A file that decodes must
 // re-encode to a file that decodes to the same map; a second round trip changes nothing.
-#include "core/temp_map_file.h"
+#include "core/map/temp_map_file.h"
 #include "fuzz/checksum_repair.h"
 #include "fuzz/fuzz_check.h"
 

@@ -1,10 +1,10 @@
-// Tile deltas (core/tile_delta.h): a list of tiles (tile_list_input.h, checksums repaired)
+// Tile deltas (core/codec/tile_delta.h): a list of tiles (tile_list_input.h, checksums repaired)
 // applied to a grid with ApplyTiles, which must apply all of them or none. When they apply,
 // the delta EncodeChangedTiles computes between the grid before and after must reproduce the
 // grid after, in the packing's terms.
 #include <cstring>
 
-#include "core/tile_delta.h"
+#include "core/codec/tile_delta.h"
 #include "fuzz/checksum_repair.h"
 #include "fuzz/fuzz_check.h"
 #include "fuzz/tile_list_input.h"

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/map_codec.h"
-#include "core/tile_delta.h"
+#include "core/codec/map_codec.h"
+#include "core/codec/tile_delta.h"
 
 namespace fleetmap::fuzz {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/crc32.h"
+#include "core/io/crc32.h"
 #include "lcmtypes/convert.h"
 
 namespace fleetmap::lcmtypes {

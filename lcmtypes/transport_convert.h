@@ -4,8 +4,8 @@
 // arrival, so that 0.05 m stays exactly the static map's 0.05 m.
 #pragma once
 
-#include "core/map_replica.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
+#include "core/map/map_replica.h"
 #include "fleetmap/map_delta_t.hpp"
 #include "fleetmap/map_keyframe_t.hpp"
 #include "fleetmap/tempmap_tile_t.hpp"

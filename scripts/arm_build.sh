@@ -19,7 +19,7 @@
 # liblcm-dev and libyaml-cpp-dev are not Multi-Arch co-installable; installing their arm64
 # versions removes the amd64 ones (and so breaks the x86 build). The arm64 packages are
 # downloaded (apt-get download) and unpacked with dpkg -x into out/arm/sysroot instead.
-# OpenCV: the agent needs only core and imgproc (not imgcodecs, core/codecs/); Debian's
+# OpenCV: the agent needs only core and imgproc (not imgcodecs, core/image/); Debian's
 # OpenCVConfig.cmake lists every module, so a small config for the two is written here.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -3,7 +3,7 @@
 // ends, drawn the way a SLAM map shows them: outlines occupied, insides never observed.
 #pragma once
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 
 namespace fleetmap::sim {
 

@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "core/log_odds.h"
+#include "core/map/log_odds.h"
 
 namespace fleetmap::sim {
 

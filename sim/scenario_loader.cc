@@ -1,7 +1,7 @@
 // Scenario YAML -> Scenario. Field by field, so that every message can say where it is.
 #include <cmath>
 
-#include "core/yaml_reader.h"
+#include "core/io/yaml_reader.h"
 #include "sim/scenario.h"
 
 namespace fleetmap::sim {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "sim/scenario.h"
 
 namespace fleetmap::sim {

@@ -9,7 +9,7 @@
 #include <random>
 #include <variant>
 
-#include "core/ray_caster.h"
+#include "core/map/ray_caster.h"
 #include "core/scan.h"
 #include "sim/observation_log.h"
 #include "sim/world.h"

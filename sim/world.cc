@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 
 namespace fleetmap::sim {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 #include "sim/route.h"
 #include "sim/scenario.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vehicle_agent/input_guard.h"
+#include "vehicle_agent/localization/input_guard.h"
 
 namespace fleetmap::vehicle_agent {
 

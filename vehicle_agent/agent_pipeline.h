@@ -11,8 +11,8 @@
 
 #include "vehicle_agent/candidate_watch.h"
 #include "vehicle_agent/divergence.h"
-#include "vehicle_agent/localizer.h"
-#include "vehicle_agent/temp_map_builder.h"
+#include "vehicle_agent/localization/localizer.h"
+#include "vehicle_agent/mapping/temp_map_builder.h"
 
 namespace fleetmap::vehicle_agent {
 

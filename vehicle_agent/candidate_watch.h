@@ -13,11 +13,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/grid_geometry.h"
+#include "core/map/grid_geometry.h"
+#include "core/map/seen_free_cells.h"
 #include "core/pose2.h"
 #include "core/result.h"
 #include "core/scan.h"
-#include "core/seen_free_cells.h"
 
 namespace fleetmap::vehicle_agent {
 

@@ -4,7 +4,7 @@
 #include <cassert>
 #include <cmath>
 
-#include "vehicle_agent/input_guard.h"
+#include "vehicle_agent/localization/input_guard.h"
 #include "vehicle_agent/option_check.h"
 
 namespace fleetmap::vehicle_agent {

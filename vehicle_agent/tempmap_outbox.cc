@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "core/temp_map_file.h"
+#include "core/map/temp_map_file.h"
 
 namespace fleetmap::vehicle_agent {
 

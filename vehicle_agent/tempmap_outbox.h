@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 #include "vehicle_agent/retained_maps.h"
 
 namespace fleetmap::vehicle_agent {

@@ -14,11 +14,11 @@
 #include "aggregator/node/lcm_links.h"
 #include "aggregator/node/log_replay.h"
 #include "aggregator/node/node_config.h"
-#include "aggregator/recovery_marker.h"
+#include "aggregator/persistence/recovery_marker.h"
 #include "auth/key.h"
-#include "core/codecs/map_render.h"
 #include "core/command_line.h"
-#include "core/map_io.h"
+#include "core/image/map_render.h"
+#include "core/map/map_io.h"
 
 namespace {
 

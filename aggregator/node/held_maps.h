@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "aggregator/node/map_key.h"
-#include "core/temp_map.h"
+#include "core/map/temp_map.h"
 
 namespace fleetmap::aggregator::node {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "aggregator/node/aggregator_node.h"
-#include "core/send_pacer.h"
+#include "core/codec/send_pacer.h"
 #include "edge/lcm_groups.h"
 
 namespace fleetmap::aggregator::node {
@@ -27,7 +27,7 @@ class LcmLinks : public Publisher {
   int Poll(int timeout_ms);
   // Sends what the pacer allows now; returns how many messages still wait.
   size_t Flush();
-  // Queues a message; it goes out paced (core/send_pacer.h: a keyframe is a burst of ~100
+  // Queues a message; it goes out paced (core/codec/send_pacer.h: a keyframe is a burst of ~100
   // tiles, which slow readers such as lcm-logger would otherwise lose). False when the queue
   // is full (the message is dropped).
   bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override;

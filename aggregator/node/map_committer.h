@@ -31,7 +31,7 @@
 #include "aggregator/node/node_reporting.h"
 #include "aggregator/node/tile_spool.h"
 #include "aggregator/node/vehicle_limits.h"
-#include "core/temp_map.h"
+#include "core/map/temp_map.h"
 
 namespace fleetmap::aggregator::node {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 
 namespace fleetmap::aggregator::node {
 

@@ -2,8 +2,8 @@
 
 #include <set>
 
-#include "core/file_io.h"
-#include "core/yaml_reader.h"
+#include "core/io/file_io.h"
+#include "core/io/yaml_reader.h"
 #include "lcmtypes/convert.h"
 
 namespace fleetmap::aggregator::node {

@@ -8,7 +8,7 @@
 
 #include "aggregator/node/vehicle_limits.h"
 #include "auth/key.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 
 namespace fleetmap::aggregator::node {
 
@@ -49,7 +49,7 @@ struct AggregatorNodeOptions {
   // aggregator still has them: the vehicle never resends a tile it saw acknowledged. Empty:
   // memory only. The process uses <state-dir>/incoming.
   std::string spool_dir;
-  // After `fleetmap-mapctl recover` (aggregator/recovery_marker.h): STATUS names the
+  // After `fleetmap-mapctl recover` (aggregator/persistence/recovery_marker.h): STATUS names the
   // recovery (recovery_id, recovered_version) until `until_s`, and the vehicles send again
   // the merged maps they hold from later versions. id 0: none.
   struct Recovery {

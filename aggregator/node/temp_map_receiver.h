@@ -25,8 +25,8 @@
 #include "aggregator/node/node_reporting.h"
 #include "aggregator/node/tile_spool.h"
 #include "aggregator/node/vehicle_limits.h"
+#include "core/codec/temp_map_tiles.h"
 #include "core/result.h"
-#include "core/temp_map_tiles.h"
 
 namespace fleetmap::aggregator::node {
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 
 namespace fleetmap::aggregator::node {
 namespace {

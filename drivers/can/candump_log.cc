@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 
 namespace fleetmap::drivers::can {
 namespace {

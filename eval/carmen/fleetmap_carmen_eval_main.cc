@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "core/codecs/map_render.h"
 #include "core/command_line.h"
-#include "core/scan_inserter.h"
+#include "core/image/map_render.h"
+#include "core/map/scan_inserter.h"
 #include "eval/carmen/carmen_log.h"
 #include "eval/carmen/relation_audit.h"
 #include "eval/carmen/relations.h"
-#include "vehicle_agent/local_mapper.h"
+#include "vehicle_agent/mapping/local_mapper.h"
 
 namespace {
 

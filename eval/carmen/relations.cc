@@ -7,7 +7,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 
 namespace fleetmap::eval::carmen {
 namespace {

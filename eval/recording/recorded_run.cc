@@ -10,7 +10,7 @@
 #include "auth/replay_window.h"
 #include "auth/trailer.h"
 #include "auth/verifier.h"
-#include "core/map_replica.h"
+#include "core/map/map_replica.h"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/merge_report_t.hpp"
 #include "fleetmap/status_t.hpp"

@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "core/command_line.h"
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "eval/suite/job_pool.h"
 #include "eval/suite/suite_figures.h"
 #include "eval/suite/suite_plan.h"

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
-#include "core/codecs/map_render.h"
+#include "core/image/map_render.h"
 
 namespace fleetmap::eval::suite {
 namespace {

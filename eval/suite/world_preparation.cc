@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "core/codecs/map_render.h"
-#include "core/map_io.h"
+#include "core/image/map_render.h"
+#include "core/map/map_io.h"
 #include "sim/scenario.h"
 
 namespace fleetmap::eval::suite {

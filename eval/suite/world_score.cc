@@ -4,7 +4,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 
 namespace fleetmap::eval::suite {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/map_codec.h"
+#include "core/codec/map_codec.h"
 #include "ops/lan/lan_log.h"
 
 namespace fleetmap::ops::lan {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/command_line.h"
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "ops/lan/change_cost.h"
 #include "ops/lan/codec_sweep.h"
 #include "ops/lan/lan_log.h"

@@ -1,7 +1,7 @@
 // A map at a coarser resolution, for the resolution sweep (a 10 cm map from a 5 cm one).
 #pragma once
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 
 namespace fleetmap::ops::lan {
 

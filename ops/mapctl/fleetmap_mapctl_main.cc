@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "aggregator/recovery_marker.h"
-#include "aggregator/state_dir_lock.h"
-#include "core/codecs/map_render.h"
+#include "aggregator/persistence/recovery_marker.h"
+#include "aggregator/persistence/state_dir_lock.h"
 #include "core/command_line.h"
-#include "core/map_io.h"
+#include "core/image/map_render.h"
+#include "core/map/map_io.h"
 #include "ops/mapctl/map_edits.h"
 #include "ops/mapctl/merge_summary.h"
 #include "ops/mapctl/state_history.h"

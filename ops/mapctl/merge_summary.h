@@ -4,7 +4,7 @@
 #include <string>
 
 #include "aggregator/merge_commit.h"
-#include "core/grid_geometry.h"
+#include "core/map/grid_geometry.h"
 
 namespace fleetmap::ops::mapctl {
 

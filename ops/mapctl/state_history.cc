@@ -2,9 +2,9 @@
 
 #include <filesystem>
 
-#include "aggregator/journal.h"
-#include "aggregator/map_persistence.h"
-#include "aggregator/snapshot.h"
+#include "aggregator/persistence/journal.h"
+#include "aggregator/persistence/map_persistence.h"
+#include "aggregator/persistence/snapshot.h"
 
 namespace fleetmap::ops::mapctl {
 namespace {

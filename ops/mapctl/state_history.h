@@ -1,4 +1,4 @@
-// The history an aggregator's state folder holds (aggregator/map_persistence.h): the
+// The history an aggregator's state folder holds (aggregator/persistence/map_persistence.h): the
 // snapshot's commits, then the journal's newer ones, read without writing anything (the
 // aggregator cuts a torn journal tail when it opens the folder; this only reports it), and
 // any version of the map rebuilt from it.

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "aggregator/journal.h"
-#include "aggregator/snapshot.h"
+#include "aggregator/persistence/journal.h"
+#include "aggregator/persistence/snapshot.h"
 
 namespace fleetmap::ops::mapctl {
 namespace {

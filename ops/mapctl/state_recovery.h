@@ -1,7 +1,7 @@
 // Recovery of a state folder the aggregator refuses to start on (a damaged journal or
-// snapshot, aggregator/journal.h): the history that can still be read, i.e. the snapshot's
-// merges, then the journal's intact records in order up to the first one that is not, and
-// what that leaves out. Reads only; the caller writes the recovered history as the new state
+// snapshot, aggregator/persistence/journal.h): the history that can still be read, i.e. the
+// snapshot's merges, then the journal's intact records in order up to the first one that is not,
+// and what that leaves out. Reads only; the caller writes the recovered history as the new state
 // (state_writer.h), which keeps the damaged files in the backup folder.
 #pragma once
 

@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "aggregator/map_persistence.h"
-#include "aggregator/snapshot.h"
+#include "aggregator/persistence/map_persistence.h"
+#include "aggregator/persistence/snapshot.h"
 
 namespace fleetmap::ops::mapctl {
 namespace {

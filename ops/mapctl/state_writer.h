@@ -1,6 +1,6 @@
 // Replaces an aggregator state folder's map with another store's, keeping the old files.
-// The caller holds the folder's lock (aggregator/state_dir_lock.h) so that no aggregator
-// runs meanwhile. Order, so that a crash at any point leaves a folder the aggregator can
+// The caller holds the folder's lock (aggregator/persistence/state_dir_lock.h) so that no
+// aggregator runs meanwhile. Order, so that a crash at any point leaves a folder the aggregator can
 // open: the old snapshot is copied and the journal moved into the backup folder, then the
 // new snapshot is written atomically (an empty journal is what a fresh snapshot has).
 #pragma once

@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "core/codecs/map_render.h"
+#include "core/codec/tile_delta.h"
 #include "core/command_line.h"
-#include "core/map_io.h"
-#include "core/tile_delta.h"
+#include "core/image/map_render.h"
+#include "core/map/map_io.h"
 #include "sim/livinglab_map.h"
 
 namespace {

@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "drivers/sick/scan_telegram_codec.h"
 #include "sim/sick/tcp_reassembly.h"
 

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <string>
 
-#include "core/codecs/map_render.h"
 #include "core/command_line.h"
-#include "core/map_io.h"
+#include "core/image/map_render.h"
+#include "core/map/map_io.h"
 #include "sim/scenario.h"
 #include "sim/worldgen/scenario_writer.h"
 #include "sim/worldgen/world_generator.h"

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 #include "core/result.h"
 #include "sim/worldgen/random.h"
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 #include "core/result.h"
 #include "sim/scenario.h"
 

@@ -5,7 +5,7 @@
 // building may be turned by any angle in the grid, as real maps often are.
 #pragma once
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 #include "core/pose2.h"
 #include "core/result.h"
 #include "sim/worldgen/floor_plan.h"

@@ -7,10 +7,10 @@
 #include <random>
 #include <vector>
 
-#include "core/occupancy_grid.h"
-#include "core/ray_caster.h"
-#include "core/scan_inserter.h"
-#include "core/temp_map.h"
+#include "core/map/occupancy_grid.h"
+#include "core/map/ray_caster.h"
+#include "core/map/scan_inserter.h"
+#include "core/map/temp_map.h"
 
 namespace fleetmap::aggregator::testing {
 

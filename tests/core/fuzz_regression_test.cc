@@ -1,13 +1,13 @@
 // Inputs on which the fuzz targets (fuzz/, docs/fuzzing.md) found core decoders crashing or
 // misbehaving, rebuilt by hand; tests/data/fuzz/<target>/ holds the fuzzers' own inputs, which
-// every fuzz run replays. Fixed in core/temp_map_tiles.cc, core/map_replica.cc and
+// every fuzz run replays. Fixed in core/codec/temp_map_tiles.cc, core/map/map_replica.cc and
 // core/yaml_reader.{h,cc}.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/map_replica.h"
-#include "core/temp_map_tiles.h"
-#include "core/yaml_reader.h"
+#include "core/codec/temp_map_tiles.h"
+#include "core/io/yaml_reader.h"
+#include "core/map/map_replica.h"
 
 namespace fleetmap::core {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/cell_packing.h"
+#include "core/codec/cell_packing.h"
 
 namespace fleetmap::eval {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "fleetmap/merge_report_t.hpp"
 #include "fleetmap/status_t.hpp"
 #include "lcmtypes/convert.h"

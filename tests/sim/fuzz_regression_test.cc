@@ -4,7 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "sim/scenario.h"
 
 namespace fleetmap::sim {

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 
 namespace fleetmap::sim::testing {
 

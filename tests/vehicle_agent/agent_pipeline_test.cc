@@ -6,7 +6,7 @@
 #include <cmath>
 #include <functional>
 
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "sim/simulator.h"
 
 namespace fleetmap::vehicle_agent {

@@ -11,7 +11,7 @@
 
 #include "sim/simulator.h"
 #include "vehicle_agent/divergence.h"
-#include "vehicle_agent/localizer.h"
+#include "vehicle_agent/localization/localizer.h"
 
 namespace fleetmap::vehicle_agent::sim_testing {
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <vector>
 
-#include "core/occupancy_grid.h"
-#include "core/ray_caster.h"
+#include "core/map/occupancy_grid.h"
+#include "core/map/ray_caster.h"
 #include "core/scan.h"
-#include "vehicle_agent/scan_endpoints.h"
+#include "vehicle_agent/localization/scan_endpoints.h"
 
 namespace fleetmap::vehicle_agent::test_grids {
 

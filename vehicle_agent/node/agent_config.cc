@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/file_io.h"
-#include "core/yaml_reader.h"
+#include "core/io/file_io.h"
+#include "core/io/yaml_reader.h"
 #include "lcmtypes/convert.h"
 #include "vehicle_agent/node/config_reading.h"
 #include "vehicle_agent/node/input_config.h"

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "vehicle_agent/localizer.h"
+#include "vehicle_agent/localization/localizer.h"
 #include "vehicle_agent/node/input_queue.h"
 #include "vehicle_agent/node/map_follower.h"
 #include "vehicle_agent/tempmap_outbox.h"

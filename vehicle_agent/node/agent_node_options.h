@@ -6,7 +6,7 @@
 #include <string>
 
 #include "auth/key.h"
-#include "core/send_pacer.h"
+#include "core/codec/send_pacer.h"
 #include "vehicle_agent/agent_pipeline.h"
 #include "vehicle_agent/node/input_queue.h"
 #include "vehicle_agent/node/map_follower.h"

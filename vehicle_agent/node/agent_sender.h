@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "auth/signer.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 #include "vehicle_agent/agent_pipeline.h"
 #include "vehicle_agent/node/agent_counters.h"
 #include "vehicle_agent/node/agent_node_options.h"

@@ -9,8 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "core/io/yaml_reader.h"
 #include "core/result.h"
-#include "core/yaml_reader.h"
 
 namespace fleetmap::vehicle_agent::node {
 

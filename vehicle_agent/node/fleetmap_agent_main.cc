@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "vehicle_agent/node/agent_flags.h"
 #include "vehicle_agent/node/agent_loop.h"
 

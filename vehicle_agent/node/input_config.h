@@ -2,7 +2,7 @@
 // come from, and the settings of the SICK scanner and the CAN bus when they are the source.
 #pragma once
 
-#include "core/yaml_reader.h"
+#include "core/io/yaml_reader.h"
 #include "vehicle_agent/node/agent_config.h"
 
 namespace fleetmap::vehicle_agent::node {

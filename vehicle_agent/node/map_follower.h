@@ -17,7 +17,7 @@
 #include <limits>
 #include <optional>
 
-#include "core/map_replica.h"
+#include "core/map/map_replica.h"
 
 namespace fleetmap::vehicle_agent::node {
 

@@ -3,7 +3,7 @@
 // section, undefined when the file has none (the defaults stay).
 #pragma once
 
-#include "core/yaml_reader.h"
+#include "core/io/yaml_reader.h"
 #include "vehicle_agent/agent_pipeline.h"
 
 namespace fleetmap::vehicle_agent::node {

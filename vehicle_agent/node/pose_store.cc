@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 
 namespace fleetmap::vehicle_agent::node {
 

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {

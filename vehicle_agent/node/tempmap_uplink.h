@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/send_pacer.h"
-#include "core/temp_map.h"
+#include "core/codec/send_pacer.h"
+#include "core/map/temp_map.h"
 #include "fleetmap/status_t.hpp"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "vehicle_agent/node/agent_counters.h"

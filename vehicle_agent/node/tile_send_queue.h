@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/send_pacer.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/send_pacer.h"
+#include "core/codec/temp_map_tiles.h"
 
 namespace fleetmap::vehicle_agent::node {
 

@@ -10,7 +10,7 @@
 
 #include "aggregator/node/map_hash.h"
 #include "auth/trailer.h"
-#include "core/map_replica.h"
+#include "core/map/map_replica.h"
 #include "fleetmap/map_request_t.hpp"
 #include "tests/aggregator/node/node_test_util.h"
 #include "tests/aggregator/test_files.h"

@@ -14,7 +14,7 @@
 #include "aggregator/node/node_reporting.h"
 #include "aggregator/node/tile_spool.h"
 #include "aggregator/node/vehicle_limits.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 #include "tests/aggregator/node/node_test_util.h"
 
 namespace fleetmap::aggregator::node::testing {

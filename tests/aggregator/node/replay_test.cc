@@ -12,7 +12,7 @@
 #include "aggregator/node/map_hash.h"
 #include "auth/key.h"
 #include "auth/signer.h"
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "tests/aggregator/node/node_test_util.h"
 #include "tests/aggregator/node/process_util.h"
 #include "tests/aggregator/test_files.h"

@@ -9,7 +9,7 @@
 
 #include "aggregator/node/map_hash.h"
 #include "auth/trailer.h"
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "tests/aggregator/node/fleet_test_world.h"
 #include "tests/aggregator/node/node_test_util.h"
 #include "tests/aggregator/node/process_util.h"

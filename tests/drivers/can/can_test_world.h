@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/occupancy_grid.h"
+#include "core/map/occupancy_grid.h"
 #include "sim/world.h"
 
 namespace fleetmap::sim::can::testing {

@@ -2,7 +2,7 @@
 // input is in tests/data/fuzz/candump/. Fixed in drivers/can/candump_log.cc.
 #include <gtest/gtest.h>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "drivers/can/candump_log.h"
 
 namespace fleetmap::drivers::can {

@@ -8,7 +8,7 @@
 #include "eval/carmen/carmen_log.h"
 #include "eval/carmen/relations.h"
 #include "tests/support/data_dir.h"
-#include "vehicle_agent/local_mapper.h"
+#include "vehicle_agent/mapping/local_mapper.h"
 
 namespace fleetmap::eval::carmen {
 namespace {

@@ -7,7 +7,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "auth/signer.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/merge_report_t.hpp"
 #include "fleetmap/status_t.hpp"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "core/codecs/map_render.h"
+#include "core/image/map_render.h"
 
 namespace fleetmap::eval::suite {
 namespace {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "sim/scenario.h"
 
 namespace fleetmap::eval::suite {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/map_codec.h"
+#include "core/codec/map_codec.h"
 #include "fleetmap/status_t.hpp"
 #include "lcmtypes/transport_convert.h"
 #include "ops/lan/change_cost.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "aggregator/current_map_store.h"
-#include "aggregator/map_persistence.h"
+#include "aggregator/persistence/map_persistence.h"
 #include "tests/aggregator/test_files.h"
 
 namespace fleetmap::ops::mapctl::testing {

@@ -4,8 +4,8 @@
 
 #include <fstream>
 
-#include "aggregator/snapshot.h"
-#include "aggregator/state_dir_lock.h"
+#include "aggregator/persistence/snapshot.h"
+#include "aggregator/persistence/state_dir_lock.h"
 #include "ops/mapctl/state_writer.h"
 #include "tests/ops/mapctl/mapctl_fixture.h"
 

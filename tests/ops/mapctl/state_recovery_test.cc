@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "aggregator/map_persistence.h"
+#include "aggregator/persistence/map_persistence.h"
 #include "ops/mapctl/state_writer.h"
 #include "tests/ops/mapctl/mapctl_fixture.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "sim/world.h"
 #include "sim/worldgen/free_space.h"
 #include "sim/worldgen/world_generator.h"

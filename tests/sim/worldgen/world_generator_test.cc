@@ -7,7 +7,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 
 namespace fleetmap::sim::worldgen {
 namespace {

@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "auth/trailer.h"
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "tests/support/multicast.h"
 #include "tests/support/process.h"
 #include "tests/vehicle_agent/node/node_test_util.h"

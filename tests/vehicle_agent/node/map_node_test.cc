@@ -1,5 +1,5 @@
 // The map catch-up protocol from the vehicle's side: keyframes, deltas, version gaps and the
-// aggregator's heartbeat, with tiles made by aggregator-independent code (core/tile_delta.h).
+// aggregator's heartbeat, with tiles made by aggregator-independent code (core/codec/tile_delta.h).
 #include <gtest/gtest.h>
 
 #include "tests/vehicle_agent/node/node_test_util.h"

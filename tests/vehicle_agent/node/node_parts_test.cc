@@ -3,7 +3,7 @@
 
 #include <fstream>
 
-#include "core/temp_map_file.h"
+#include "core/map/temp_map_file.h"
 #include "tests/vehicle_agent/node/temp_dir.h"
 #include "vehicle_agent/node/agent_node_options.h"
 #include "vehicle_agent/node/input_queue.h"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "auth/trailer.h"
-#include "core/temp_map_tiles.h"
+#include "core/codec/temp_map_tiles.h"
 #include "lcmtypes/convert.h"
 #include "lcmtypes/transport_convert.h"
 #include "sim/simulator.h"

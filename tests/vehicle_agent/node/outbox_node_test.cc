@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "core/temp_map_file.h"
+#include "core/map/temp_map_file.h"
 #include "fleetmap/status_t.hpp"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "tests/vehicle_agent/node/node_test_util.h"

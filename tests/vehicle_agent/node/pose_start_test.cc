@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "tests/vehicle_agent/node/temp_dir.h"
-#include "vehicle_agent/particle_set.h"
+#include "vehicle_agent/localization/particle_set.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/file_io.h"
+#include "core/io/file_io.h"
 #include "drivers/can/candump_log.h"
 #include "drivers/can/diff_drive_odometry.h"
 #include "drivers/can/socketcan.h"

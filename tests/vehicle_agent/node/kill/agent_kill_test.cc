@@ -15,7 +15,7 @@
 
 #include "aggregator/aggregator.h"
 #include "auth/trailer.h"
-#include "core/map_io.h"
+#include "core/map/map_io.h"
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "tests/support/multicast.h"
 #include "tests/support/process.h"

@@ -1,0 +1,109 @@
+#include "core/map/map_replica.h"
+
+namespace fleetmap::core {
+namespace {
+
+bool SameKeyframe(const KeyframeTile& a, const KeyframeTile& b) {
+  return a.version == b.version && a.geometry == b.geometry &&
+         a.tile_size_cells == b.tile_size_cells && a.count == b.count;
+}
+
+}  // namespace
+
+MapReplica::MapReplica(int max_buffered_versions) : max_buffered_versions_(max_buffered_versions) {}
+
+bool MapReplica::NeedsKeyframe() const {
+  if (!map_) return true;
+  return !deltas_.empty() && deltas_.begin()->first > version_;
+}
+
+Status MapReplica::Seed(OccupancyGrid grid, int32_t version, int32_t tile_size_cells) {
+  FLEETMAP_RETURN_IF_ERROR(grid.geometry().Validate().WithContext("seed map"));
+  TileOptions options;
+  options.tile_size_cells = tile_size_cells;
+  FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext("seed map"));
+  if (version < 0) return InvalidArgument("seed map: version must be >= 0");
+  map_ = std::move(grid);
+  version_ = version;
+  tile_size_cells_ = tile_size_cells;
+  keyframe_header_.reset();
+  keyframe_tiles_.clear();
+  deltas_.erase(deltas_.begin(), deltas_.lower_bound(version_));
+  ApplyReadyDeltas();
+  return OkStatus();
+}
+
+Result<bool> MapReplica::AddKeyframeTile(const KeyframeTile& tile) {
+  FLEETMAP_RETURN_IF_ERROR(tile.geometry.Validate().WithContext("keyframe"));
+  TileOptions options;
+  options.tile_size_cells = tile.tile_size_cells;
+  FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext("keyframe"));
+  const TileLayout layout(tile.geometry, tile.tile_size_cells);
+  // The position before Linear(), which overflows for one far outside the layout.
+  if (tile.count != layout.num_tiles() || tile.index < 0 || tile.index >= tile.count ||
+      tile.tile.tx < 0 || tile.tile.ty < 0 || tile.tile.tx >= layout.tiles_x() ||
+      tile.tile.ty >= layout.tiles_y() || layout.Linear(tile.tile) != tile.index) {
+    return DataLoss("keyframe tile index or count does not fit the map");
+  }
+  if (map_ && tile.version <= version_) return false;  // we are already there
+  if (!keyframe_header_ || !SameKeyframe(*keyframe_header_, tile)) {
+    // A newer keyframe replaces one half received.
+    if (keyframe_header_ && tile.version < keyframe_header_->version) return false;
+    keyframe_header_ = tile;
+    keyframe_header_->frame.clear();
+    keyframe_tiles_.clear();
+  }
+  keyframe_tiles_[tile.index] = EncodedTile{tile.tile, tile.frame};
+  if (static_cast<int32_t>(keyframe_tiles_.size()) < tile.count) return false;
+  OccupancyGrid grid(tile.geometry);
+  std::vector<EncodedTile> tiles;
+  for (auto& [i, t] : keyframe_tiles_) tiles.push_back(std::move(t));
+  keyframe_tiles_.clear();
+  const Status applied = ApplyTiles(tiles, tile.tile_size_cells, grid);
+  keyframe_header_.reset();
+  if (!applied.ok()) return applied.WithContext("keyframe version " + std::to_string(tile.version));
+  map_ = std::move(grid);
+  version_ = tile.version;
+  tile_size_cells_ = tile.tile_size_cells;
+  deltas_.erase(deltas_.begin(), deltas_.lower_bound(version_));  // older than the keyframe
+  ApplyReadyDeltas();
+  return map_.has_value();  // a corrupt buffered delta drops the map it completed
+}
+
+Result<bool> MapReplica::AddDeltaTile(const DeltaTile& tile) {
+  if (tile.count < 0 || (tile.count > 0 && (tile.index < 0 || tile.index >= tile.count))) {
+    return DataLoss("delta tile index or count out of range");
+  }
+  if (map_ && tile.base_version < version_) return false;  // old news
+  if (!deltas_.count(tile.base_version) &&
+      static_cast<int>(deltas_.size()) >= max_buffered_versions_) {
+    return OutOfRange("too many versions waiting; a keyframe is needed");
+  }
+  PendingVersion& p = deltas_[tile.base_version];
+  if (!p.tiles.empty() && p.count != tile.count) return DataLoss("delta tile count disagrees");
+  p.count = tile.count;
+  if (tile.count > 0) p.tiles[tile.index] = EncodedTile{tile.tile, tile.frame};
+  const int32_t before = version_;
+  if (map_) ApplyReadyDeltas();
+  return map_.has_value() && version_ != before;  // not when a corrupt delta dropped the map
+}
+
+void MapReplica::ApplyReadyDeltas() {
+  for (auto it = deltas_.find(version_); it != deltas_.end(); it = deltas_.find(version_)) {
+    PendingVersion& p = it->second;
+    if (static_cast<int32_t>(p.tiles.size()) < p.count) return;  // still waiting
+    std::vector<EncodedTile> tiles;
+    for (auto& [i, t] : p.tiles) tiles.push_back(std::move(t));
+    const Status s = ApplyTiles(tiles, tile_size_cells_, *map_);
+    deltas_.erase(it);
+    if (!s.ok()) {
+      // A corrupt delta cannot be applied: drop the map so that a keyframe is requested.
+      map_.reset();
+      version_ = -1;
+      return;
+    }
+    ++version_;
+  }
+}
+
+}  // namespace fleetmap::core

@@ -1,0 +1,69 @@
+// A vehicle's copy of the current map, kept up to date from the aggregator's tiles: a
+// keyframe (every tile of version v) builds it, deltas (the tiles that changed from v to v+1)
+// advance it one version at a time, in order. Nothing is applied half: a version becomes the
+// map only when all its tiles are in. A missed delta (a version gap) shows in NeedsKeyframe()
+// so that the vehicle asks for a keyframe, and tiles for other maps or versions are refused.
+#pragma once
+
+#include <map>
+#include <optional>
+
+#include "core/codec/tile_delta.h"
+
+namespace fleetmap::core {
+
+// One tile of a keyframe: the map's geometry travels with every tile.
+struct KeyframeTile {
+  int32_t version = 0;
+  GridGeometry geometry;
+  int32_t tile_size_cells = 64;
+  int32_t index = 0, count = 0;
+  TileIndex tile;
+  std::vector<uint8_t> frame;
+};
+
+// One tile of the change from base_version to base_version + 1.
+struct DeltaTile {
+  int32_t base_version = 0;
+  int32_t index = 0, count = 0;  // count 0: the version changed no cell
+  TileIndex tile;
+  std::vector<uint8_t> frame;
+};
+
+class MapReplica {
+ public:
+  explicit MapReplica(int max_buffered_versions = 16);
+
+  // Starts from a map the vehicle already holds (the static map file, which is version 0 at
+  // the aggregator), so that deltas from `version` on apply without waiting for a keyframe.
+  // `tile_size_cells` is the tiling the aggregator's deltas use (deltas carry no geometry).
+  // A keyframe of a newer version still replaces it.
+  Status Seed(OccupancyGrid grid, int32_t version, int32_t tile_size_cells = 64);
+  // Returns true when this tile completed a keyframe that is now the map.
+  Result<bool> AddKeyframeTile(const KeyframeTile& tile);
+  // Returns true when this tile completed one or more versions that are now applied.
+  Result<bool> AddDeltaTile(const DeltaTile& tile);
+
+  bool has_map() const { return map_.has_value(); }
+  const OccupancyGrid& map() const { return *map_; }
+  int32_t version() const { return version_; }
+  // No map yet, or deltas are waiting for a version that was missed.
+  bool NeedsKeyframe() const;
+
+ private:
+  struct PendingVersion {
+    int32_t count = 0;
+    std::map<int32_t, EncodedTile> tiles;
+  };
+  void ApplyReadyDeltas();
+
+  int max_buffered_versions_;
+  std::optional<OccupancyGrid> map_;
+  int32_t version_ = -1;
+  int32_t tile_size_cells_ = 64;
+  std::map<int32_t, PendingVersion> deltas_;  // by base version
+  std::optional<KeyframeTile> keyframe_header_;
+  std::map<int32_t, EncodedTile> keyframe_tiles_;
+};
+
+}  // namespace fleetmap::core

@@ -1,0 +1,129 @@
+#include "core/map/map_replica.h"
+
+#include <gtest/gtest.h>
+
+namespace fleetmap::core {
+namespace {
+
+OccupancyGrid Hall() {
+  OccupancyGrid g(GridGeometry(0.05, 150, 100, Pose2(1, 2, 0)));
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 150; ++x)
+      g.SetState({x, y}, x == 0 || y == 0 ? CellState::kOccupied : CellState::kFree);
+  return g;
+}
+
+std::vector<KeyframeTile> Keyframe(const OccupancyGrid& g, int32_t version) {
+  std::vector<KeyframeTile> out;
+  const auto tiles = EncodeAllTiles(g);
+  for (size_t i = 0; i < tiles.size(); ++i)
+    out.push_back({version, g.geometry(), 64, int32_t(i), int32_t(tiles.size()), tiles[i].index,
+                   tiles[i].frame});
+  return out;
+}
+
+std::vector<DeltaTile> Delta(const OccupancyGrid& a, const OccupancyGrid& b, int32_t base) {
+  std::vector<DeltaTile> out;
+  const auto tiles = EncodeChangedTiles(a, b);
+  for (size_t i = 0; i < tiles.size(); ++i)
+    out.push_back({base, int32_t(i), int32_t(tiles.size()), tiles[i].index, tiles[i].frame});
+  if (tiles.empty()) out.push_back({base, 0, 0, {}, {}});
+  return out;
+}
+
+OccupancyGrid WithPallet(OccupancyGrid g, int x0) {
+  for (int y = 50; y < 60; ++y)
+    for (int x = x0; x < x0 + 10; ++x) g.SetState({x, y}, CellState::kOccupied);
+  return g;
+}
+
+bool SameStates(const OccupancyGrid& a, const OccupancyGrid& b) {
+  const TriStateClassifier c;
+  for (size_t i = 0; i < a.cells().size(); ++i)
+    if (c(a.cells()[i]) != c(b.cells()[i])) return false;
+  return true;
+}
+
+TEST(MapReplicaTest, KeyframeThenDeltasInOrder) {
+  const OccupancyGrid v3 = Hall(), v4 = WithPallet(v3, 20), v5 = WithPallet(v4, 100);
+  MapReplica replica;
+  EXPECT_TRUE(replica.NeedsKeyframe());
+  const auto key = Keyframe(v3, 3);
+  for (size_t i = 0; i < key.size(); ++i) {
+    auto r = replica.AddKeyframeTile(key[i]);
+    ASSERT_TRUE(r.ok()) << r.status().ToString();
+    EXPECT_EQ(*r, i + 1 == key.size());
+  }
+  EXPECT_EQ(replica.version(), 3);
+  for (const DeltaTile& t : Delta(v3, v4, 3)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.version(), 4);
+  EXPECT_TRUE(SameStates(replica.map(), v4));
+  for (const DeltaTile& t : Delta(v4, v5, 4)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.version(), 5);
+  EXPECT_TRUE(SameStates(replica.map(), v5));
+  EXPECT_FALSE(replica.NeedsKeyframe());
+}
+
+TEST(MapReplicaTest, OutOfOrderDeltasWaitAndAGapAsksForAKeyframe) {
+  const OccupancyGrid v1 = Hall(), v2 = WithPallet(v1, 20), v3 = WithPallet(v2, 100);
+  MapReplica replica;
+  for (const auto& t : Keyframe(v1, 1)) ASSERT_TRUE(replica.AddKeyframeTile(t).ok());
+  for (const auto& t : Delta(v2, v3, 2)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.version(), 1);       // 2 -> 3 waits for 1 -> 2
+  EXPECT_TRUE(replica.NeedsKeyframe());  // a version was missed (so far)
+  for (const auto& t : Delta(v1, v2, 1)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.version(), 3);  // both applied, in order
+  EXPECT_TRUE(SameStates(replica.map(), v3));
+}
+
+TEST(MapReplicaTest, EmptyDeltaAdvancesTheVersion) {
+  const OccupancyGrid v1 = Hall();
+  MapReplica replica;
+  for (const auto& t : Keyframe(v1, 1)) ASSERT_TRUE(replica.AddKeyframeTile(t).ok());
+  ASSERT_TRUE(replica.AddDeltaTile({1, 0, 0, {}, {}}).ok());
+  EXPECT_EQ(replica.version(), 2);
+}
+
+TEST(MapReplicaTest, CorruptTilesAreRefusedAndNothingIsHalfApplied) {
+  const OccupancyGrid v1 = Hall(), v2 = WithPallet(v1, 20);
+  MapReplica replica;
+  auto key = Keyframe(v1, 1);
+  key[1].index = 99;
+  EXPECT_FALSE(replica.AddKeyframeTile(key[1]).ok());
+  key = Keyframe(v1, 1);
+  for (const auto& t : key) ASSERT_TRUE(replica.AddKeyframeTile(t).ok());
+  auto delta = Delta(v1, v2, 1);
+  ASSERT_FALSE(delta.empty());
+  delta[0].frame[40] ^= 0xFF;
+  for (const auto& t : delta) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  // The corrupt version was not applied; the replica asks for a keyframe instead.
+  EXPECT_TRUE(replica.NeedsKeyframe());
+  for (const auto& t : Keyframe(v2, 2)) ASSERT_TRUE(replica.AddKeyframeTile(t).ok());
+  EXPECT_EQ(replica.version(), 2);
+  EXPECT_TRUE(SameStates(replica.map(), v2));
+}
+
+TEST(MapReplicaTest, SeededFromAStaticMapAppliesDeltasFromItsVersion) {
+  const OccupancyGrid v0 = Hall(), v1 = WithPallet(v0, 20), v2 = WithPallet(v1, 100);
+  MapReplica replica;
+  EXPECT_FALSE(replica.Seed(v0, -1).ok());
+  EXPECT_FALSE(replica.Seed(v0, 0, 2).ok());  // not a usable tiling
+  EXPECT_FALSE(replica.has_map());
+  // A delta that arrived before the seed waits for it.
+  for (const DeltaTile& t : Delta(v1, v2, 1)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  ASSERT_TRUE(replica.Seed(v0, 0).ok());
+  EXPECT_EQ(replica.version(), 0);
+  EXPECT_TRUE(replica.NeedsKeyframe());  // version 1 is missing
+  for (const DeltaTile& t : Delta(v0, v1, 0)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.version(), 2);
+  EXPECT_FALSE(replica.NeedsKeyframe());
+  EXPECT_TRUE(SameStates(replica.map(), v2));
+  // A keyframe of a newer version replaces the seeded map; an older one is old news.
+  for (const auto& t : Keyframe(v0, 1)) EXPECT_FALSE(*replica.AddKeyframeTile(t));
+  for (const auto& t : Keyframe(v0, 5)) ASSERT_TRUE(replica.AddKeyframeTile(t).ok());
+  EXPECT_EQ(replica.version(), 5);
+  EXPECT_TRUE(SameStates(replica.map(), v0));
+}
+
+}  // namespace
+}  // namespace fleetmap::core
