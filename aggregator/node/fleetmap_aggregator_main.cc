@@ -10,8 +10,8 @@
 #include <tuple>
 #include <vector>
 
+#include "aggregator/node/aggregator_links.h"
 #include "aggregator/node/aggregator_node.h"
-#include "aggregator/node/lcm_links.h"
 #include "aggregator/node/log_replay.h"
 #include "aggregator/node/node_config.h"
 #include "aggregator/persistence/recovery_marker.h"
@@ -206,7 +206,7 @@ int RunReplay(const Args& args, const AggregatorProcessConfig& config) {
 }
 
 int RunLive(const Args& args, const AggregatorProcessConfig& config) {
-  auto links = LcmLinks::Open(config.uplink_url, config.downlink_url);
+  auto links = AggregatorLinks::Open(config.uplink_url, config.downlink_url);
   if (!links.ok()) {
     std::fprintf(stderr, "fleetmap-aggregator: %s\n", links.status().ToString().c_str());
     return 1;

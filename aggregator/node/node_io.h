@@ -2,7 +2,7 @@
 // (channel, bytes, time) and go out through a Publisher, log lines through a LogSink (both
 // shared with the agent's node, edge/). Vehicles send on the uplink (TEMPMAP_<id>,
 // MAP_REQUEST), the aggregator answers on the downlink. The process binds these to LCM
-// (lcm_links.h), a replay to nothing, tests to memory.
+// (aggregator_links.h), a replay to nothing, tests to memory.
 #pragma once
 
 #include "edge/cause_log.h"

@@ -1,16 +1,15 @@
 #include "eval/recording/recorded_run.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <lcm/lcm-cpp.hpp>
-#include <limits>
+#include <map>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "auth/replay_window.h"
-#include "auth/trailer.h"
-#include "auth/verifier.h"
 #include "core/map/map_replica.h"
+#include "eval/recording/lcm_log_events.h"
+#include "eval/recording/sender_attribution.h"
 #include "fleetmap/divergence_t.hpp"
 #include "fleetmap/merge_report_t.hpp"
 #include "fleetmap/status_t.hpp"
@@ -20,34 +19,6 @@
 
 namespace fleetmap::eval::recording {
 namespace {
-
-struct Event {
-  int64_t wall_utime = 0;
-  int order = 0;  // keeps the logger's order among equal stamps
-  std::string channel;
-  std::vector<uint8_t> data;
-};
-
-core::Status ReadLog(const std::string& path, std::vector<Event>& events) {
-  lcm::LogFile log(path, "r");
-  if (!log.good()) return core::NotFound("cannot open LCM log " + path);
-  while (const lcm::LogEvent* e = log.readNextEvent()) {
-    Event ev;
-    ev.wall_utime = e->timestamp;
-    ev.order = static_cast<int>(events.size());
-    ev.channel = e->channel;
-    const auto* bytes = static_cast<const uint8_t*>(e->data);
-    ev.data.assign(bytes, bytes + e->datalen);
-    events.push_back(std::move(ev));
-  }
-  return core::OkStatus();
-}
-
-// A message's LCM encoding, without its trailer once attributed.
-struct Payload {
-  const void* data = nullptr;
-  int size = 0;
-};
 
 // What the uplink said about one temporary map.
 struct TempMapSeen {
@@ -59,7 +30,7 @@ struct TempMapSeen {
 class Reader {
  public:
   Reader(const sim::World& world, const RecordedRunOptions& options)
-      : world_(world), options_(options), verifier_(options.fleet_key) {
+      : world_(world), options_(options), attribution_(options.fleet_key) {
     for (size_t i = 0; i < world.scenario().vehicles.size(); ++i)
       vehicle_index_[world.scenario().vehicles[i].id] = i;
     // Version 0 is the static map, as the aggregator loads it.
@@ -67,12 +38,12 @@ class Reader {
     SeedStaticMap();
   }
 
-  void Handle(const Event& e) {
+  void Handle(const LoggedEvent& e) {
     Payload p{e.data.data(), static_cast<int>(e.data.size())};
     const std::optional<std::string> owner =
         lcmtypes::ChannelOwner(e.channel, options_.aggregator_sender);
     if (owner) {
-      const char* refused = Attribute(e, *owner, &p);
+      const char* refused = attribution_.Attribute(e.channel, *owner, &p);
       if (refused != nullptr) return (void)++record_.fleet.messages_refused[refused];
       ++record_.fleet.attributed_messages;
     }
@@ -119,26 +90,6 @@ class Reader {
  private:
   double SimTime(int64_t utime) const { return lcmtypes::FromUtime(utime) - options_.epoch_s; }
 
-  // Null if the message is `owner`'s (and `p` then holds it without its trailer), else the
-  // reason it is not.
-  const char* Attribute(const Event& e, const std::string& owner, Payload* p) {
-    if (verifier_.enabled()) {
-      auth::Opened opened;
-      const auth::Verdict v = verifier_.Open(e.channel, p->data, p->size, owner, &opened);
-      if (v != auth::Verdict::kAccepted) return auth::VerdictName(v);
-      *p = {opened.data, opened.size};
-      return nullptr;
-    }
-    // Without the key a trailer's MAC cannot be checked: its name and number are taken as
-    // an identity trailer's are.
-    auth::Trailer t;
-    if (!auth::SplitTrailer(p->data, static_cast<size_t>(p->size), &t)) return "unnamed";
-    if (!owner.empty() && t.sender != owner) return auth::VerdictName(auth::Verdict::kWrongSender);
-    if (!windows_[t.sender].Accept(t.seq)) return auth::VerdictName(auth::Verdict::kReplayed);
-    *p = {t.payload, static_cast<int>(t.payload_size)};
-    return nullptr;
-  }
-
   template <typename T>
   std::optional<T> DecodeOrCount(const Payload& p) {
     auto m = lcmtypes::Decode<T>(p.data, p.size);
@@ -166,7 +117,7 @@ class Reader {
     }
   }
 
-  void OnTempMapTile(const Event& e, const Payload& p) {
+  void OnTempMapTile(const LoggedEvent& e, const Payload& p) {
     auto msg = DecodeOrCount<fleetmap::tempmap_tile_t>(p);
     if (!msg) return;
     auto tile = lcmtypes::FromMessage(*msg);
@@ -184,7 +135,7 @@ class Reader {
     seen.end_s = tile->end_s - options_.epoch_s;
   }
 
-  void OnMergeReport(const Event& e, const Payload& p) {
+  void OnMergeReport(const LoggedEvent& e, const Payload& p) {
     auto msg = DecodeOrCount<fleetmap::merge_report_t>(p);
     if (!msg) return;
     const auto seen = temp_maps_.find(std::make_pair(msg->vehicle_id, msg->tempmap_seq));
@@ -217,7 +168,7 @@ class Reader {
       merge_closed_wall_[msg->new_version] = m.first_tile_wall_utime;
   }
 
-  void OnMapTile(const Event& e, const Payload& p) {
+  void OnMapTile(const LoggedEvent& e, const Payload& p) {
     const int32_t before = replica_.version();
     core::Result<bool> applied = false;
     if (e.channel == lcmtypes::kMapKeyframeChannel) {
@@ -253,7 +204,7 @@ class Reader {
                                       msg->d, msg->state == fleetmap::divergence_t::BUILDING});
   }
 
-  void OnAgentStatus(const Event& e, const Payload& p) {
+  void OnAgentStatus(const LoggedEvent& e, const Payload& p) {
     auto msg = DecodeOrCount<fleetmap::status_t>(p);
     if (!msg) return;
     const int64_t cpu_us = lcmtypes::StatusCounter(*msg, "cpu_time_us").value_or(-1);
@@ -270,7 +221,7 @@ class Reader {
     u.max_rss_kb = std::max(u.max_rss_kb, rss_kb);
   }
 
-  void OnPose(const Event& e, const Payload& p) {
+  void OnPose(const LoggedEvent& e, const Payload& p) {
     auto msg = DecodeOrCount<fleetmap::pose_with_covariance_t>(p);
     if (!msg) return;
     auto pose = lcmtypes::FromMessage(*msg);
@@ -298,8 +249,7 @@ class Reader {
   std::map<std::string, std::map<int32_t, int64_t>> version_first_wall_;
   std::map<std::string, double> next_divergence_s_, next_pose_s_;
   RecordedRun record_;
-  auth::Verifier verifier_;                            // with the fleet key, if there is one
-  std::map<std::string, auth::ReplayWindow> windows_;  // without it: per named sender
+  SenderAttribution attribution_;
 };
 
 }  // namespace
@@ -307,15 +257,10 @@ class Reader {
 core::Result<RecordedRun> ReadRecordedRun(const std::vector<std::string>& log_paths,
                                           const sim::World& world,
                                           const RecordedRunOptions& options) {
-  if (log_paths.empty()) return core::InvalidArgument("no LCM log to read");
-  std::vector<Event> events;
-  for (const std::string& path : log_paths) FLEETMAP_RETURN_IF_ERROR(ReadLog(path, events));
-  if (events.empty()) return core::InvalidArgument("the LCM logs hold no message");
-  std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
-    return a.wall_utime != b.wall_utime ? a.wall_utime < b.wall_utime : a.order < b.order;
-  });
+  std::vector<LoggedEvent> events;
+  FLEETMAP_ASSIGN_OR_RETURN(events, ReadLogEvents(log_paths));
   Reader reader(world, options);
-  for (const Event& e : events) reader.Handle(e);
+  for (const LoggedEvent& e : events) reader.Handle(e);
   RecordedRun run = reader.Finish(events.front().wall_utime, events.back().wall_utime);
   int refused = 0;
   for (const auto& [reason, n] : run.fleet.messages_refused) refused += n;
@@ -329,104 +274,6 @@ core::Result<RecordedRun> ReadRecordedRun(const std::vector<std::string>& log_pa
         "): nothing to score");
   }
   return run;
-}
-
-}  // namespace fleetmap::eval::recording
-
-namespace fleetmap::eval::recording {
-namespace {
-
-std::string Num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.6g", v);
-  return text;
-}
-
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const double pos = q * (v.size() - 1);
-  const size_t lo = static_cast<size_t>(pos);
-  const size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (v[hi] - v[lo]) * (pos - lo);
-}
-
-}  // namespace
-
-std::vector<std::pair<std::string, std::string>> FleetJsonPairs(const FleetFigures& f) {
-  std::vector<std::pair<std::string, std::string>> kv;
-  // Rates over no time, and a mean over no message, are null (Num of NaN), never 0 or huge.
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const double span = f.rate_span_s > 0 ? f.rate_span_s : nan;
-  for (const auto& [channel, t] : f.traffic)
-    kv.emplace_back("fleet.bytes_per_s." + channel, Num(t.bytes / span));
-  for (const auto& [channel, t] : f.traffic) {
-    kv.emplace_back("fleet.messages_per_s." + channel, Num(t.messages / span));
-    kv.emplace_back("fleet.mean_message_bytes." + channel,
-                    Num(t.messages > 0 ? double(t.bytes) / t.messages : nan));
-  }
-  kv.emplace_back("fleet.wall_span_s", Num(f.wall_span_s));
-  kv.emplace_back("fleet.rate_span_s", Num(f.rate_span_s));
-  kv.emplace_back("fleet.change_latency_s.count", std::to_string(f.change_latency_s.size()));
-  kv.emplace_back("fleet.change_latency_s.median", Num(Percentile(f.change_latency_s, 0.5)));
-  kv.emplace_back("fleet.change_latency_s.p95", Num(Percentile(f.change_latency_s, 0.95)));
-  kv.emplace_back("fleet.change_latency_s.max", Num(Percentile(f.change_latency_s, 1.0)));
-  kv.emplace_back("fleet.changes_not_everywhere", std::to_string(f.changes_not_everywhere));
-  kv.emplace_back("fleet.final_version", std::to_string(f.final_version));
-  int holding = 0;
-  for (const auto& [id, v] : f.last_version_by_vehicle) holding += v == f.final_version;
-  kv.emplace_back("fleet.vehicles_holding_final_version", std::to_string(holding));
-  kv.emplace_back("fleet.malformed_messages", std::to_string(f.malformed_messages));
-  kv.emplace_back("fleet.map_messages_refused", std::to_string(f.map_messages_refused));
-  int refused = 0;
-  for (const auto& [reason, n] : f.messages_refused) refused += n;
-  kv.emplace_back("fleet.messages_refused", std::to_string(refused));
-  for (const auto& [reason, n] : f.messages_refused)
-    kv.emplace_back("fleet.messages_refused." + reason, std::to_string(n));
-  // The agents' cost, from their STATUS: only agents seen over more than a few seconds.
-  double cpu_share_sum = 0.0, cpu_per_sim_sum = 0.0;
-  int agents = 0;
-  int64_t rss_kb = -1;
-  for (const auto& [process, u] : f.agent_usage) {
-    rss_kb = std::max(rss_kb, u.max_rss_kb);
-    const double wall_s = (u.last_wall_utime - u.first_wall_utime) * 1e-6;
-    if (wall_s < 5.0 || !(f.rate_span_s > 0 && f.wall_span_s > 0)) continue;
-    const double cpu_s = (u.last_cpu_us - u.first_cpu_us) * 1e-6;
-    cpu_share_sum += cpu_s / wall_s;
-    // Simulated seconds in that span: the run's rate span over its wall span.
-    cpu_per_sim_sum += cpu_s / (wall_s * f.rate_span_s / f.wall_span_s);
-    ++agents;
-  }
-  if (agents > 0) {
-    kv.emplace_back("agent.cpu_percent", Num(100.0 * cpu_share_sum / agents));
-    kv.emplace_back("agent.cpu_percent_realtime", Num(100.0 * cpu_per_sim_sum / agents));
-  }
-  if (rss_kb >= 0) kv.emplace_back("agent.rss_mb", Num(rss_kb / 1024.0));
-  return kv;
-}
-
-std::string FleetFigureLines(const FleetFigures& f) {
-  std::string out;
-  for (const auto& [key, value] : FleetJsonPairs(f)) {
-    if (value == "null") continue;
-    const bool per_s = key.rfind("fleet.bytes_per_s.", 0) == 0;
-    const bool rate = key.rfind("fleet.messages_per_s.", 0) == 0;
-    const bool size = key.rfind("fleet.mean_message_bytes.", 0) == 0;
-    const bool seconds =
-        key == "fleet.wall_span_s" || key == "fleet.rate_span_s" ||
-        (key.rfind("fleet.change_latency_s.", 0) == 0 && key != "fleet.change_latency_s.count");
-    const bool percent = key.rfind("agent.cpu_percent", 0) == 0;
-    const char* unit = per_s                   ? "B/s"
-                       : rate                  ? "1/s"
-                       : size                  ? "B"
-                       : seconds               ? "s"
-                       : percent               ? "%"
-                       : key == "agent.rss_mb" ? "MB"
-                                               : "count";
-    out += key + " " + value + " " + unit + "\n";
-  }
-  return out;
 }
 
 }  // namespace fleetmap::eval::recording

@@ -7,9 +7,9 @@
 
 #include <string>
 
+#include "vehicle_agent/node/agent_links.h"
 #include "vehicle_agent/node/agent_node_options.h"
 #include "vehicle_agent/node/can_odometry_input.h"
-#include "vehicle_agent/node/lcm_links.h"
 #include "vehicle_agent/node/sick_scan_input.h"
 
 namespace fleetmap::vehicle_agent::node {

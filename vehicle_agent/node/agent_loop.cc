@@ -70,7 +70,7 @@ core::Status RunAgentLoop(AgentNode& node, const LoopSources& sources, const Loo
   return failure;
 }
 
-core::Status DrainAtShutdown(AgentNode& node, LcmLinks& links, const LoopOptions& options,
+core::Status DrainAtShutdown(AgentNode& node, AgentLinks& links, const LoopOptions& options,
                              const std::function<double()>& clock) {
   const double end_s = clock() + options.shutdown_drain_s;
   double empty_since_s = -1.0;

@@ -9,15 +9,15 @@
 #include <csignal>
 #include <functional>
 
+#include "vehicle_agent/node/agent_links.h"
 #include "vehicle_agent/node/agent_node.h"
 #include "vehicle_agent/node/can_odometry_input.h"
-#include "vehicle_agent/node/lcm_links.h"
 #include "vehicle_agent/node/sick_scan_input.h"
 
 namespace fleetmap::vehicle_agent::node {
 
 struct LoopSources {
-  LcmLinks* links = nullptr;             // required
+  AgentLinks* links = nullptr;           // required
   SickScanInput* scanner = nullptr;      // scan_source sick
   CanOdometryInput* odometry = nullptr;  // odom_source can
 };
@@ -38,7 +38,7 @@ core::Status RunAgentLoop(AgentNode& node, const LoopSources& sources, const Loo
                           const volatile std::sig_atomic_t* stop,
                           const std::function<double()>& clock);
 // The drain after Shutdown (RunAgentLoop calls it): LCM only, no sensor input is processed.
-core::Status DrainAtShutdown(AgentNode& node, LcmLinks& links, const LoopOptions& options,
+core::Status DrainAtShutdown(AgentNode& node, AgentLinks& links, const LoopOptions& options,
                              const std::function<double()>& clock);
 
 }  // namespace fleetmap::vehicle_agent::node

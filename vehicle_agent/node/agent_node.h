@@ -1,7 +1,7 @@
 // The agent process without its sockets: the LCM and driver edge of the vehicle_agent
 // library. Messages come in as (link, channel, bytes), scans and odometry from drivers as
 // core types, time is passed in, and everything it sends goes through a Publisher, so that
-// tests run it in memory and the process binds it to LCM (lcm_links.h).
+// tests run it in memory and the process binds it to LCM (agent_links.h).
 //
 // Per loop (Tick): a new map version goes to the pipeline without stopping it; queued scans
 // are localized (POSE_<id>, DIVERGENCE_<id>) and closed temporary maps go to the outbox,

@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
   // The node runs on the monotonic clock; what it sends is stamped in wall-clock time.
   config.node.utime_offset_s = WallNowS() - SteadyNowS();
 
-  core::Result<std::unique_ptr<LcmLinks>> links = LcmLinks::Open(config.urls);
+  core::Result<std::unique_ptr<AgentLinks>> links = AgentLinks::Open(config.urls);
   if (!links.ok()) return Fail(links.status().ToString(), 1);
   core::Result<std::unique_ptr<AgentNode>> node =
       AgentNode::Create(config.node, links->get(), log, std::move(static_map), SteadyNowS());

@@ -1,6 +1,6 @@
 // How the agent node talks to the outside without owning a socket: messages come in as
 // (link, channel, bytes) and go out through a Publisher, log lines through a LogSink (both
-// shared with the aggregator's node, edge/). The process binds these to LCM (lcm_links.h);
+// shared with the aggregator's node, edge/). The process binds these to LCM (agent_links.h);
 // tests bind them to memory.
 #pragma once
 

@@ -105,6 +105,11 @@ inline std::vector<std::vector<uint8_t>> TileMessages(const core::TempMap& map, 
   return out;
 }
 
+// The tile indices an acknowledgement names as received.
+inline std::vector<int32_t> Received(const fleetmap::tempmap_ack_t& ack) {
+  return std::vector<int32_t>(ack.received_tiles.begin(), ack.received_tiles.end());
+}
+
 // The hall of tests/aggregator with a pallet at (6, 7), and temporary maps of it from a
 // vehicle driving past, 20 s apart, with anchor errors of up to 0.1 m and 1.5 deg.
 inline core::OccupancyGrid PalletWorld() {

@@ -13,11 +13,11 @@
 
 namespace fleetmap::aggregator::node {
 
-class LcmLinks : public Publisher {
+class AggregatorLinks : public Publisher {
  public:
   // Opens both links. The error names the URL and says how to get a multicast route.
-  static core::Result<std::unique_ptr<LcmLinks>> Open(const std::string& uplink_url,
-                                                      const std::string& downlink_url);
+  static core::Result<std::unique_ptr<AggregatorLinks>> Open(const std::string& uplink_url,
+                                                             const std::string& downlink_url);
 
   // Subscribes `node` (which outlives these links) to the uplink channels; every message
   // is handed over with the wall clock as its receive time.
@@ -33,7 +33,7 @@ class LcmLinks : public Publisher {
   bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override;
 
  private:
-  explicit LcmLinks(std::unique_ptr<edge::LcmGroups> groups) : groups_(std::move(groups)) {}
+  explicit AggregatorLinks(std::unique_ptr<edge::LcmGroups> groups) : groups_(std::move(groups)) {}
 
   struct Outgoing {
     Link link;

@@ -1,17 +1,17 @@
-#include "vehicle_agent/node/lcm_links.h"
+#include "vehicle_agent/node/agent_links.h"
 
 namespace fleetmap::vehicle_agent::node {
 
-core::Result<std::unique_ptr<LcmLinks>> LcmLinks::Open(const LinkUrls& urls) {
+core::Result<std::unique_ptr<AgentLinks>> AgentLinks::Open(const LinkUrls& urls) {
   auto groups = edge::LcmGroups::Open({{Link::kSensor, urls.sensor},
                                        {Link::kUplink, urls.uplink},
                                        {Link::kDownlink, urls.downlink}},
                                       /*share_same_url=*/true);
   if (!groups.ok()) return groups.status();
-  return std::unique_ptr<LcmLinks>(new LcmLinks(std::move(groups).value()));
+  return std::unique_ptr<AgentLinks>(new AgentLinks(std::move(groups).value()));
 }
 
-void LcmLinks::Subscribe(AgentNode* node, const std::function<double()>& clock) {
+void AgentLinks::Subscribe(AgentNode* node, const std::function<double()>& clock) {
   // LCM keeps 30 messages per subscription by default and drops the rest silently; a scan
   // burst while a map swap runs must reach our own queue, which skips and counts
   // (input_queue.h). Odometry above all should not be lost: the tracker takes a gap as
@@ -28,11 +28,11 @@ void LcmLinks::Subscribe(AgentNode* node, const std::function<double()>& clock) 
   }
 }
 
-bool LcmLinks::Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) {
+bool AgentLinks::Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) {
   return groups_->Publish(link, channel, bytes);
 }
 
-core::Result<int> LcmLinks::Handle(double timeout_s, int max_messages) {
+core::Result<int> AgentLinks::Handle(double timeout_s, int max_messages) {
   return groups_->Handle(timeout_s, max_messages);
 }
 

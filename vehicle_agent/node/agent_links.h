@@ -18,10 +18,10 @@ struct LinkUrls {
   std::string sensor, uplink, downlink;  // lcmtypes/convert.h has the defaults
 };
 
-class LcmLinks : public Publisher {
+class AgentLinks : public Publisher {
  public:
   // Opens every link; an error names the URL and, for multicast, what to run.
-  static core::Result<std::unique_ptr<LcmLinks>> Open(const LinkUrls& urls);
+  static core::Result<std::unique_ptr<AgentLinks>> Open(const LinkUrls& urls);
 
   // Delivers the node's subscriptions to it, stamped with `clock()`. The node outlives the
   // links, or the links are destroyed first.
@@ -33,7 +33,7 @@ class LcmLinks : public Publisher {
   core::Result<int> Handle(double timeout_s, int max_messages = 1000);
 
  private:
-  explicit LcmLinks(std::unique_ptr<edge::LcmGroups> groups) : groups_(std::move(groups)) {}
+  explicit AgentLinks(std::unique_ptr<edge::LcmGroups> groups) : groups_(std::move(groups)) {}
   std::unique_ptr<edge::LcmGroups> groups_;
 };
 
