@@ -29,29 +29,13 @@
 #include <string>
 
 #include "core/map/log_odds.h"
+#include "core/map/map_yaml.h"
 #include "core/map/occupancy_grid.h"
 #include "core/map/pgm.h"
 #include "core/pose2.h"
 #include "core/result.h"
 
 namespace fleetmap::core {
-
-enum class MapMode { kTrinary, kScale, kRaw };
-const char* MapModeName(MapMode mode);  // "trinary", "scale", "raw": the YAML spelling
-
-// The YAML half of a map_server map, as found in the file.
-struct MapMetadata {
-  std::string image_path;      // resolved: the YAML folder joined with a relative `image`
-  double resolution_m = 0.05;  // metres per pixel
-  Pose2 origin;                // x_m, y_m, theta_rad: the grid origin (GridGeometry)
-  bool negate = false;
-  OccupancyThresholds thresholds;  // occupied_thresh, free_thresh of the file
-  MapMode mode = MapMode::kTrinary;
-};
-
-// Parses and validates YAML text; `yaml_path` resolves `image` and prefixes every error.
-// Does not look at the image.
-Result<MapMetadata> ParseMapYaml(const std::string& yaml_text, const std::string& yaml_path);
 
 struct MapLoadOptions {
   LogOddsLimits limits;  // clamping bounds of the loaded grid; occupied/free become max/min

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/file_io.h"
+#include "core/io/number_text.h"
 #include "drivers/sick/scan_telegram_codec.h"
 #include "sim/sick/tcp_reassembly.h"
 
@@ -123,7 +124,14 @@ core::Result<Recording> ReadPcapJson(const std::string& path) {
     }
     double time_s = 0.0;
     if (tcp->contains("Timestamps") && (*tcp)["Timestamps"].contains("tcp.time_relative")) {
-      time_s = std::atof((*tcp)["Timestamps"]["tcp.time_relative"].get<std::string>().c_str());
+      // A garbled time must not become 0 s silently: it would reorder the recording.
+      const nlohmann::json& relative = (*tcp)["Timestamps"]["tcp.time_relative"];
+      if (!relative.is_string())
+        return core::InvalidArgument(path + ": tcp.time_relative is not a string");
+      core::Result<double> parsed =
+          core::ParseNumber(relative.get<std::string>(), "tcp.time_relative");
+      if (!parsed.ok()) return parsed.status().WithContext(path);
+      time_s = *parsed;
     }
     core::Result<std::string> bytes = HexColons((*tcp)["tcp.payload"].get<std::string>());
     if (!bytes.ok()) return bytes.status().WithContext(path);
