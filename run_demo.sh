@@ -4,7 +4,9 @@
 # runs its own fleetmap-agent, the server fleetmap-aggregator, all talking over real LCM UDP
 # multicast on loopback, recorded by fleetmap-record (lcm-logger's file format, docs/channels.md);
 # then the run is scored against the truth.
-# Installs what is missing, builds, runs (a few minutes on 2 cores), and prints where the
+# Installs what is missing, builds the programs the fleet script runs (fleetmap-sim,
+# fleetmap-agent, fleetmap-aggregator, fleetmap-record, fleetmap-eval, fleetmap-keygen: the
+# list scripts/fleet_run.sh --programs prints), runs (a few minutes on 2 cores), and prints where the
 # results are: out/current_map.png, out/report.json, out/report.md, out/divergence.png, the
 # logs in out/logs/.
 #   ./run_demo.sh [--scenario FILE] [--speed X] [--duration S]
@@ -16,7 +18,7 @@ args=()
 while [ $# -gt 0 ]; do
   case $1 in
     --scenario | --speed | --duration) args+=("$1" "${2:?$1 needs a value}"); shift 2 ;;
-    -h | --help) sed -n '2,10p' "$0"; exit 0 ;;
+    -h | --help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "run_demo.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -25,9 +27,8 @@ step() { printf '\n== %s\n' "$*"; }
 
 step "1/4 installing missing packages and building"
 # Exactly the programs the fleet script runs: it keeps the one list (scripts/fleet_run.sh --programs).
-targets=()
-while read -r program; do targets+=(--target "$program"); done < <(scripts/fleet_run.sh --programs)
-scripts/build.sh build "${targets[@]}"
+mapfile -t programs < <(scripts/fleet_run.sh --programs)
+scripts/build.sh build -t "${programs[@]}"
 
 step "2/4 multicast on loopback (LCM needs a route for 224.0.0.0/4 and a large receive buffer)"
 scripts/setup_multicast.sh

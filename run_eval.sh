@@ -51,8 +51,8 @@ if [[ -n ${FLEETMAP_EVAL_BIN_DIR:-} ]]; then
 else
   build=${FLEETMAP_EVAL_BUILD_DIR:-build-release}
   scripts/build.sh "$build" -DCMAKE_BUILD_TYPE=Release -DFLEETMAP_BUILD_TESTS=OFF \
-    -DFLEETMAP_BUILD_JAR=OFF --target fleetmap-eval --target fleetmap-carmen-eval \
-    --target fleetmap-suite --target fleetmap-locate-eval
+    -DFLEETMAP_BUILD_JAR=OFF -t fleetmap-eval fleetmap-carmen-eval fleetmap-suite \
+    fleetmap-locate-eval
   bin=$build/bin
 fi
 ((build_only)) && { echo "run_eval: built ($bin)" >&2; exit 0; }

@@ -42,7 +42,7 @@ build_dir=${FLEETMAP_FUZZ_BUILD_DIR:-build-fuzz}
 # Warnings stay warnings: clang's set differs from the gcc build that CI holds to -Werror.
 scripts/build.sh "$build_dir" -DCMAKE_CXX_COMPILER=clang++-14 -DFLEETMAP_FUZZ=ON \
   -DFLEETMAP_BUILD_TESTS=OFF -DFLEETMAP_BUILD_BENCH=OFF -DFLEETMAP_BUILD_JAR=OFF \
-  -DFLEETMAP_WERROR=OFF --target fleetmap_fuzz
+  -DFLEETMAP_WERROR=OFF -t fleetmap_fuzz
 $build_only && exit 0
 
 if ((${#targets[@]} == 0)); then

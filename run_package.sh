@@ -21,7 +21,7 @@ esac
 build_dir=${FLEETMAP_BUILD_DIR:-build}
 jobs=${FLEETMAP_JOBS:-$(nproc)}
 # Only what the packages hold (CMAKE_SKIP_INSTALL_ALL_DEPENDENCY: CPack builds nothing else).
-FLEETMAP_JOBS=$jobs scripts/build.sh "$build_dir" --target fleetmap_packaged
+FLEETMAP_JOBS=$jobs scripts/build.sh "$build_dir" -t fleetmap_packaged
 scripts/make_debs.sh "$build_dir" out/deb
 for deb in out/deb/*.deb; do
   name=$(dpkg-deb -f "$deb" Package)

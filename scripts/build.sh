@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # The one install-and-build step of every run_*.sh: installs what is missing
-# (scripts/install_deps.sh), configures BUILD_DIR with Ninja and builds it, or only TARGETs.
-#   scripts/build.sh BUILD_DIR [-DNAME=VALUE ...] [--target TARGET ...]
+# (scripts/install_deps.sh), configures BUILD_DIR with Ninja and builds it, or only the TARGETs
+# named after -t (as cmake --build -t takes them).
+#   scripts/build.sh BUILD_DIR [-DNAME=VALUE ...] [-t TARGET ...]
 # The build type is RelWithDebInfo unless a -DCMAKE_BUILD_TYPE says otherwise; with CI=true
 # warnings are errors (FLEETMAP_WERROR, unless a -DFLEETMAP_WERROR says otherwise).
 # FLEETMAP_JOBS sets the build's parallelism (default: every core). The build's progress goes
 # to stderr, so that a caller's stdout holds only its figures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build_dir=${1:?usage: scripts/build.sh BUILD_DIR [-DNAME=VALUE ...] [--target TARGET ...]}
+build_dir=${1:?usage: scripts/build.sh BUILD_DIR [-DNAME=VALUE ...] [-t TARGET ...]}
 shift
 # Defaults first: cmake keeps the last of two -D of one name, so the caller's win.
 cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo)
@@ -17,10 +18,18 @@ targets=()
 while (($#)); do
   case $1 in
     -D*) cmake_args+=("$1"); shift ;;
-    --target) targets+=("${2:?--target needs a name}"); shift 2 ;;
+    -t | --target)
+      shift
+      while (($#)) && [[ $1 != -* ]]; do targets+=("$1"); shift; done
+      ((${#targets[@]})) || { echo "build.sh: -t needs at least one target" >&2; exit 2; }
+      ;;
     *) echo "build.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
 scripts/install_deps.sh
 cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
-cmake --build "$build_dir" -j "${FLEETMAP_JOBS:-$(nproc)}" ${targets[@]:+--target "${targets[@]}"} >&2
+if ((${#targets[@]})); then
+  cmake --build "$build_dir" -j "${FLEETMAP_JOBS:-$(nproc)}" -t "${targets[@]}" >&2
+else
+  cmake --build "$build_dir" -j "${FLEETMAP_JOBS:-$(nproc)}" >&2
+fi

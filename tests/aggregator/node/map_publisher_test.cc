@@ -13,16 +13,13 @@ namespace fleetmap::aggregator::node {
 namespace {
 
 using testing::NodeParts;
+using testing::Received;
 using testing::RecordingPublisher;
 
 class RefusingPublisher : public Publisher {
  public:
   bool Publish(Link, const std::string&, const std::vector<uint8_t>&) override { return false; }
 };
-
-std::vector<int32_t> Received(const fleetmap::tempmap_ack_t& ack) {
-  return std::vector<int32_t>(ack.received_tiles.begin(), ack.received_tiles.end());
-}
 
 TEST(MapPublisherTest, APendingAcknowledgementNamesTheTilesGivenAndTheCurrentVersion) {
   NodeParts parts;

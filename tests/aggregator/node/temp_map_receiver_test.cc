@@ -20,6 +20,7 @@ using testing::Encode;
 using testing::KeyOf;
 using testing::NodeParts;
 using testing::PalletMaps;
+using testing::Received;
 using testing::TileMessages;
 
 constexpr int64_t kUtime = 1'700'000'000'000'000;  // when the vehicle sent its tiles
@@ -44,10 +45,6 @@ struct Receiving {
   NodeParts parts;
   TempMapReceiver receiver;
 };
-
-std::vector<int32_t> Received(const fleetmap::tempmap_ack_t& ack) {
-  return std::vector<int32_t>(ack.received_tiles.begin(), ack.received_tiles.end());
-}
 
 std::vector<int32_t> FirstTiles(size_t n) {
   std::vector<int32_t> tiles(n);
