@@ -1,4 +1,5 @@
-// Scratch folders and a simulated full disk for the persistence tests.
+// A simulated full disk and the bytes of damaged journals, for the persistence tests (their
+// scratch folders: tests/support/scratch_folder.h).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -11,25 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/scratch_folder.h"
+
 namespace fleetmap::aggregator::testing {
-
-// A fresh folder under the test's temporary directory, removed at the end.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string pattern = ::testing::TempDir() + "fleetmap_agg_XXXXXX";
-    path_ = ::mkdtemp(pattern.data()) ? pattern : "";
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::string& path() const { return path_; }
-  std::string File(const std::string& name) const { return path_ + "/" + name; }
-
- private:
-  std::string path_;
-};
 
 // While alive, this process cannot write past `bytes` into any file (RLIMIT_FSIZE): writes
 // fail with EFBIG as they would with ENOSPC on a full disk, after a partial write.

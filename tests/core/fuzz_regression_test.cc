@@ -8,6 +8,7 @@
 #include "core/codec/temp_map_tiles.h"
 #include "core/io/yaml_reader.h"
 #include "core/map/map_replica.h"
+#include "tests/core/map/keyframe_tiles.h"
 
 namespace fleetmap::core {
 namespace {
@@ -32,14 +33,7 @@ OccupancyGrid Hall() {
   return g;
 }
 
-std::vector<KeyframeTile> Keyframe(const OccupancyGrid& g, int32_t version) {
-  std::vector<KeyframeTile> out;
-  const auto tiles = EncodeAllTiles(g);
-  for (size_t i = 0; i < tiles.size(); ++i)
-    out.push_back({version, g.geometry(), 64, int32_t(i), int32_t(tiles.size()), tiles[i].index,
-                   tiles[i].frame});
-  return out;
-}
+using testing::Keyframe;
 
 // A delta from `base` whose one tile (a valid frame with a valid CRC) holds the window of
 // tile (0, 0) but says it is tile (1, 0): it decodes, and cannot be applied.

@@ -28,7 +28,7 @@ using testing::TileMessages;
 constexpr int64_t kUtime = 1'700'000'000'000'000;  // when the vehicle sent its tiles
 
 TEST(AggregatorNodeTest, ADuplicateIsRecognisedAfterReopeningTheStateFolder) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   const auto tiles = TileMessages(PalletMaps()[0], kUtime);
   uint64_t hash = 0;
   {
@@ -52,7 +52,7 @@ TEST(AggregatorNodeTest, ADuplicateIsRecognisedAfterReopeningTheStateFolder) {
 }
 
 TEST(AggregatorNodeTest, AcknowledgedTilesOfAnIncompleteMapSurviveARestart) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   const auto tiles = TileMessages(PalletMaps()[0], kUtime);
   {
     RecordingPublisher out;
@@ -75,7 +75,7 @@ TEST(AggregatorNodeTest, AcknowledgedTilesOfAnIncompleteMapSurviveARestart) {
 }
 
 TEST(AggregatorNodeTest, AFailedJournalWriteAcknowledgesNothingAndTheResendMerges) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   RecordingPublisher out;
   auto node = MakeNode(&out, {}, folder.path());
   const auto tiles = TileMessages(PalletMaps()[0], kUtime);
@@ -103,7 +103,7 @@ TEST(AggregatorNodeTest, AFailedJournalWriteAcknowledgesNothingAndTheResendMerge
 // are merged within a second, in the order they arrived, and the map is the one a node
 // without the fault made from the same maps (as a replay of the uplink log would).
 TEST(AggregatorNodeTest, AfterAFullDiskTheBacklogMergesInArrivalOrderAsWithoutTheFault) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   RecordingPublisher out, reference_out;
   auto node = MakeNode(&out, {}, folder.path());
   auto reference = MakeNode(&reference_out, {}, "");
@@ -144,7 +144,7 @@ TEST(AggregatorNodeTest, AfterAFullDiskTheBacklogMergesInArrivalOrderAsWithoutTh
 // again what they kept, in the order they first sent it: every acknowledged merge is back,
 // and the map is the one before the loss.
 TEST(AggregatorNodeTest, AfterARecoveryTheVehiclesKeptMapsBringBackEveryAcknowledgedMerge) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   std::map<std::string, vehicle_agent::TempMapOutbox> vehicles;
   vehicles.emplace("v1", vehicle_agent::OutboxOptions{});
   vehicles.emplace("v2", vehicle_agent::OutboxOptions{});

@@ -97,7 +97,7 @@ TEST(CandidateReportsTest, AReportThatCannotBeRightChangesAndSendsNothing) {
 }
 
 TEST(CandidateReportsTest, AReportWhoseJournalWriteFailsChangesAndSendsNothing) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   Reporting r(folder.path());
   ASSERT_GT(r.candidates.size(), 1u);
   {

@@ -45,7 +45,7 @@ std::vector<fleetmap::tempmap_ack_t> Acks(const RecordingPublisher& out) {
 // A 1 MB tmpfs as the state folder, in a mount namespace of this test's own (gtest runs every
 // test in a process of its own under ctest), so nothing stays mounted if the test dies.
 TEST(AggregatorFaultTest, ADiskFullWhileMergingAcknowledgesNothingSaysSoAndRecovers) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   if (::unshare(CLONE_NEWNS) != 0 ||
       ::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0 ||
       ::mount("tmpfs", folder.path().c_str(), "tmpfs", 0, "size=1m,mode=0700") != 0) {

@@ -89,7 +89,7 @@ TEST(MapCommitterTest, ARejectionIsAcknowledgedWithItsReasonAndSendsNoDelta) {
 }
 
 TEST(MapCommitterTest, AMapsKeptTilesLeaveTheSpoolOnceItsOutcomeIsJournaled) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   AggregatorNodeOptions options;
   options.spool_dir = folder.File("incoming");
   NodeParts parts(options);
@@ -138,7 +138,7 @@ TEST(MapCommitterTest, AMapWithNoRoomToBeHeldWaitsUnacknowledgedForItsResend) {
 }
 
 TEST(MapCommitterTest, MapsTheJournalRefusedWaitUnacknowledgedAndMergeInArrivalOrder) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   NodeParts parts({}, folder.path());
   {
     aggregator::testing::FileSizeLimit full_disk(16);  // the journal cannot grow

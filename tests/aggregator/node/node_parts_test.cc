@@ -140,7 +140,7 @@ TEST(AggregatorNodeConfigTest, MistakesNameTheFieldAndTheLine) {
 }
 
 TEST(AggregatorNodeTileSpoolTest, KeptTilesComeBackAndGoWithTheirMap) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   const std::string dir = folder.File("incoming");
   const MapKey a{"v 1/../x", 3}, b{"v2", -4};  // ids are hex-encoded into file names
   {
@@ -172,7 +172,7 @@ TEST(AggregatorNodeTileSpoolTest, KeptTilesComeBackAndGoWithTheirMap) {
 }
 
 TEST(AggregatorNodeTileSpoolTest, AnUnusableFolderIsAnError) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   std::ofstream(folder.File("file")) << "x";
   EXPECT_FALSE(TileSpool::Open(folder.File("file")).ok());
 }

@@ -22,41 +22,12 @@
 #include "lcmtypes/convert.h"
 #include "lcmtypes/transport_convert.h"
 #include "tests/aggregator/test_hall.h"
+#include "tests/edge/recording_publisher.h"
 
 namespace fleetmap::aggregator::node::testing {
 
-struct SentMessage {
-  Link link;
-  std::string channel;
-  std::vector<uint8_t> bytes;
-};
-
-class RecordingPublisher : public Publisher {
- public:
-  bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override {
-    sent.push_back({link, channel, bytes});
-    return true;
-  }
-  // Every message on `channel`, decoded (a failure fails the test).
-  template <typename T>
-  std::vector<T> Decoded(const std::string& channel) const {
-    std::vector<T> out;
-    for (const SentMessage& m : sent) {
-      if (m.channel != channel) continue;
-      auto msg = lcmtypes::Decode<T>(
-          m.bytes.data(), static_cast<int>(auth::PayloadSize(m.bytes.data(), m.bytes.size())));
-      EXPECT_TRUE(msg.ok()) << channel << ": " << msg.status().ToString();
-      if (msg.ok()) out.push_back(*msg);
-    }
-    return out;
-  }
-  size_t Count(const std::string& channel) const {
-    size_t n = 0;
-    for (const SentMessage& m : sent) n += m.channel == channel;
-    return n;
-  }
-  std::vector<SentMessage> sent;
-};
+using edge::testing::RecordingPublisher;
+using edge::testing::SentMessage;
 
 template <typename T>
 std::vector<uint8_t> Encode(const T& msg) {

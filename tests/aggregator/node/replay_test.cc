@@ -111,7 +111,7 @@ class AggregatorNodeReplayTest : public ::testing::Test {
     return testing::FinalLineOf(testing::ReadText(out));
   }
 
-  aggregator::testing::ScratchFolder folder_;
+  fleetmap::testing::ScratchFolder folder_;
   std::string map_yaml_ = folder_.File("hall.yaml");
   std::string log_ = folder_.File("uplink.lcmlog");
   std::vector<Event> events_;

@@ -107,7 +107,7 @@ TEST(AggregatorNodeRestartTest,
      KilledAndRestartedSeveralTimesTheAggregatorLosesNoMapAndMergesNoneTwice) {
   FLEETMAP_REQUIRE_MULTICAST(kUplink);
   FLEETMAP_REQUIRE_MULTICAST(kDownlink);
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   const std::string map_yaml = folder.File("hall.yaml");
   const std::string state = folder.File("state");
   ASSERT_TRUE(core::SaveMapServerMap(aggregator::testing::HallMap(), map_yaml).ok());

@@ -52,7 +52,7 @@ std::vector<int32_t> FirstTiles(size_t n) {
   return tiles;
 }
 
-AggregatorNodeOptions Spooled(const aggregator::testing::ScratchFolder& folder) {
+AggregatorNodeOptions Spooled(const fleetmap::testing::ScratchFolder& folder) {
   AggregatorNodeOptions options;
   options.spool_dir = folder.File("incoming");
   return options;
@@ -89,7 +89,7 @@ TEST(TempMapReceiverTest, TilesInAnyOrderBecomeOneMapAndARepeatIsAnsweredAtOnce)
 }
 
 TEST(TempMapReceiverTest, APendingAcknowledgementNamesOnlyTilesKeptOnDisk) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   Receiving r(Spooled(folder));
   const Messages tiles = TileMessages(PalletMaps()[0], kUtime);
   const Messages all_but_last(tiles.begin(), tiles.end() - 1);
@@ -163,7 +163,7 @@ TEST(TempMapReceiverTest, NewMapsBeyondTheVehiclesOrTheNodesBoundWaitForTheirRes
 }
 
 TEST(TempMapReceiverTest, AMapSilentForTheTimeoutIsDroppedWithItsKeptTiles) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   AggregatorNodeOptions options = Spooled(folder);
   options.pending_map_timeout_s = 10.0;
   Receiving r(options);
@@ -181,7 +181,7 @@ TEST(TempMapReceiverTest, AMapSilentForTheTimeoutIsDroppedWithItsKeptTiles) {
 }
 
 TEST(TempMapReceiverTest, KeptTilesComeBackAfterARestartAndTheMapCompletes) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   const Messages tiles = TileMessages(PalletMaps()[0], kUtime);
   {
     Receiving before(Spooled(folder));
@@ -202,7 +202,7 @@ TEST(TempMapReceiverTest, KeptTilesComeBackAfterARestartAndTheMapCompletes) {
 }
 
 TEST(TempMapReceiverTest, AMapWithAnUnreadableKeptTileIsDroppedAtTheRestart) {
-  aggregator::testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   const Messages tiles = TileMessages(PalletMaps()[0], kUtime);
   {
     Receiving before(Spooled(folder));

@@ -59,7 +59,7 @@ class JournalTest : public ::testing::Test {
     EXPECT_EQ(after.records[2], Payload(7));
   }
 
-  testing::ScratchFolder folder_;
+  fleetmap::testing::ScratchFolder folder_;
   std::string path_ = folder_.File("journal.fmj");
   std::vector<char> two_;   // after two records
   std::vector<char> good_;  // after three

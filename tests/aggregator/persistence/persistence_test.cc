@@ -59,7 +59,7 @@ class PersistenceTest : public ::testing::Test {
   }
 
   static std::vector<core::TempMap>* maps_;
-  testing::ScratchFolder folder_;
+  fleetmap::testing::ScratchFolder folder_;
   std::string journal_ = folder_.File(MapPersistence::kJournalName);
   std::string snapshot_ = folder_.File(MapPersistence::kSnapshotName);
 };
@@ -223,7 +223,7 @@ TEST_F(PersistenceTest, FullDiskAcknowledgesNothing) {
 }
 
 TEST_F(PersistenceTest, SameInputsGiveByteIdenticalMapsAndJournals) {
-  testing::ScratchFolder other;
+  fleetmap::testing::ScratchFolder other;
   {
     Aggregator a = Open(Options());
     auto b = Aggregator::Open(testing::HallMap(), Options(), other.path());

@@ -8,7 +8,7 @@ namespace fleetmap::aggregator {
 namespace {
 
 TEST(RecoveryMarkerTest, WrittenThenReadBackAndGarbageIsNamed) {
-  testing::ScratchFolder folder;
+  fleetmap::testing::ScratchFolder folder;
   auto none = ReadRecoveryMarker(folder.path());
   ASSERT_TRUE(none.ok());
   EXPECT_FALSE(none->has_value());

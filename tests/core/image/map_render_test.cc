@@ -2,12 +2,12 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <filesystem>
 
 #include "core/io/file_io.h"
 #include "core/map/pgm.h"
+#include "tests/support/scratch_folder.h"
 
 namespace fleetmap::core {
 namespace {
@@ -21,18 +21,10 @@ const Bgr kGrey{205, 205, 205};
 
 class MapRenderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = ::testing::TempDir() + "fleetmap_render_XXXXXX";
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string File(const std::string& name) const { return (dir_ / name).string(); }
+  std::string File(const std::string& name) const { return folder_.File(name); }
 
-  fs::path dir_;
+  fleetmap::testing::ScratchFolder folder_;
+  const fs::path dir_{folder_.path()};
 };
 
 // 4 x 3 cells: row 0 (bottom) free except an occupied cell at x = 1, row 2 (top) occupied at

@@ -2,7 +2,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <stdlib.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 
 #include "core/image/map_render.h"
 #include "core/io/file_io.h"
+#include "tests/support/scratch_folder.h"
 
 namespace fleetmap::core {
 namespace {
@@ -25,17 +25,7 @@ constexpr char kMapYaml[] =
 
 class MapIoTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = ::testing::TempDir() + "fleetmap_map_io_XXXXXX";
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(dir_, ec);
-  }
-  std::string File(const std::string& name) const { return (dir_ / name).string(); }
+  std::string File(const std::string& name) const { return folder_.File(name); }
   void Write(const std::string& name, const std::string& text) const {
     std::ofstream(File(name), std::ios::binary) << text;
   }
@@ -55,7 +45,8 @@ class MapIoTest : public ::testing::Test {
     return names;
   }
 
-  fs::path dir_;
+  fleetmap::testing::ScratchFolder folder_;
+  const fs::path dir_{folder_.path()};
 };
 
 std::string StatusText(const Result<LoadedMap>& r) { return r.ok() ? "ok" : r.status().ToString(); }

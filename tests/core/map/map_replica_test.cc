@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/core/map/keyframe_tiles.h"
+
 namespace fleetmap::core {
 namespace {
 
@@ -13,14 +15,7 @@ OccupancyGrid Hall() {
   return g;
 }
 
-std::vector<KeyframeTile> Keyframe(const OccupancyGrid& g, int32_t version) {
-  std::vector<KeyframeTile> out;
-  const auto tiles = EncodeAllTiles(g);
-  for (size_t i = 0; i < tiles.size(); ++i)
-    out.push_back({version, g.geometry(), 64, int32_t(i), int32_t(tiles.size()), tiles[i].index,
-                   tiles[i].frame});
-  return out;
-}
+using testing::Keyframe;
 
 std::vector<DeltaTile> Delta(const OccupancyGrid& a, const OccupancyGrid& b, int32_t base) {
   std::vector<DeltaTile> out;

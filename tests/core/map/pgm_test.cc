@@ -2,12 +2,12 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "core/io/file_io.h"
+#include "tests/support/scratch_folder.h"
 
 namespace fleetmap::core {
 namespace {
@@ -15,21 +15,13 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-// A fresh folder under the test temp dir, removed with everything in it.
+// Each test's files in a scratch folder of its own.
 class PgmTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = ::testing::TempDir() + "fleetmap_pgm_XXXXXX";
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string File(const std::string& name) const { return (dir_ / name).string(); }
+  std::string File(const std::string& name) const { return folder_.File(name); }
 
-  fs::path dir_;
+  fleetmap::testing::ScratchFolder folder_;
+  const fs::path dir_{folder_.path()};
 };
 
 GrayImage Gradient(int width, int height) {

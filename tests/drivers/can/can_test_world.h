@@ -4,19 +4,10 @@
 
 #include <string>
 
-#include "core/map/occupancy_grid.h"
 #include "sim/world.h"
+#include "tests/sim/sim_test_util.h"
 
 namespace fleetmap::sim::can::testing {
-
-inline core::OccupancyGrid Room() {
-  core::OccupancyGrid grid(core::GridGeometry(0.05, 200, 120));
-  for (int y = 0; y < 120; ++y)
-    for (int x = 0; x < 200; ++x)
-      grid.SetState({x, y}, (x == 0 || y == 0 || x == 199 || y == 119) ? core::CellState::kOccupied
-                                                                       : core::CellState::kFree);
-  return grid;
-}
 
 constexpr const char* kLoopScenario = R"(
 map: room.yaml
@@ -32,7 +23,9 @@ vehicles:
 )";
 
 inline sim::World LoopWorld() {
-  return sim::World::Create(sim::ParseScenario(kLoopScenario, "loop.yaml").value(), Room()).value();
+  return sim::World::Create(sim::ParseScenario(kLoopScenario, "loop.yaml").value(),
+                            sim::testing::Room())
+      .value();
 }
 
 }  // namespace fleetmap::sim::can::testing

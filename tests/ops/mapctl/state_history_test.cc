@@ -13,7 +13,7 @@ namespace fleetmap::ops::mapctl {
 namespace {
 
 using aggregator::MapPersistence;
-using aggregator::testing::ScratchFolder;
+using fleetmap::testing::ScratchFolder;
 using testing::History;
 using testing::StoreAt;
 using testing::TinyHall;

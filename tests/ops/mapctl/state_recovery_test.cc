@@ -13,8 +13,8 @@ namespace {
 
 using aggregator::MapPersistence;
 using aggregator::testing::ReadAll;
-using aggregator::testing::ScratchFolder;
 using aggregator::testing::WriteAll;
+using fleetmap::testing::ScratchFolder;
 using testing::StoreAt;
 using testing::TinyHall;
 

@@ -12,9 +12,9 @@
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
-std::unique_ptr<AgentNode> MakeNode(const AgentNodeOptions& options, MemoryPublisher* out,
+std::unique_ptr<AgentNode> MakeNode(const AgentNodeOptions& options, RecordingPublisher* out,
                                     std::optional<core::OccupancyGrid> map, double now_s = 0.0) {
   auto node = AgentNode::Create(options, out, nullptr, std::move(map), now_s);
   EXPECT_TRUE(node.ok()) << node.status().ToString();
@@ -23,7 +23,7 @@ std::unique_ptr<AgentNode> MakeNode(const AgentNodeOptions& options, MemoryPubli
 
 TEST(AgentNodeTest, LocalizesAndPublishesPoseAndDivergenceOnTheStaticMap) {
   const sim::World world = testing::RoomWorld();
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = MakeNode(testing::RoomOptions(world), &out, world.static_map());
   const auto truth = testing::DriveNode(world, *node, 6.0);
 
@@ -32,7 +32,7 @@ TEST(AgentNodeTest, LocalizesAndPublishesPoseAndDivergenceOnTheStaticMap) {
   ASSERT_EQ(requests.size(), 1u);
   EXPECT_EQ(requests[0].vehicle_id, "v1");
   EXPECT_EQ(requests[0].have_version, 0);
-  for (const testing::Sent& m : out.sent) EXPECT_EQ(m.link, Link::kUplink) << m.channel;
+  for (const testing::SentMessage& m : out.sent) EXPECT_EQ(m.link, Link::kUplink) << m.channel;
 
   const auto poses = out.Decoded<fleetmap::pose_with_covariance_t>("POSE_v1");
   ASSERT_EQ(poses.size(), truth.size());  // one per scan
@@ -65,7 +65,7 @@ TEST(AgentNodeTest, LocalizesAndPublishesPoseAndDivergenceOnTheStaticMap) {
 
 TEST(AgentNodeTest, APalletAppearingIsSentAsTilesThatAssembleIntoItsTemporaryMap) {
   const sim::World world = testing::RoomWorld(testing::kPallet);
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = MakeNode(testing::RoomOptions(world), &out, world.static_map());
   bool saw_building = false;
   testing::DriveNode(world, *node, 16.0,
@@ -114,7 +114,7 @@ TEST(AgentNodeTest, WithExternalLocalizationTheFirstExternalPoseStartsTheFilter)
   options.use_external_pose = true;
   options.initial_pose = InitialPoseSource::kFirstExternal;
   options.pipeline.localizer.initial_pose_in_map = core::Pose2(9.0, 5.0, 3.0);  // not used
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = MakeNode(options, &out, world.static_map());
   bool subscribed = false;
   for (const Subscription& s : node->Subscriptions()) subscribed |= s.channel == "EXTPOSE_v1";

@@ -17,9 +17,9 @@
 #include "core/map/map_io.h"
 #include "tests/support/multicast.h"
 #include "tests/support/process.h"
+#include "tests/support/scratch_folder.h"
 #include "tests/vehicle_agent/node/node_test_util.h"
 #include "tests/vehicle_agent/node/sensor_feed.h"
-#include "tests/vehicle_agent/node/temp_dir.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
@@ -55,9 +55,9 @@ class Uplink {
 TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
   const std::string sensor = Url(41, 7941), uplink = Url(42, 7942), downlink = Url(43, 7943);
   FLEETMAP_REQUIRE_MULTICAST(sensor);
-  testing::TempDir dir;
+  fleetmap::testing::ScratchFolder dir;
   const sim::World world = testing::RoomWorld();
-  ASSERT_TRUE(core::SaveMapServerMap(world.static_map(), dir / "room.yaml").ok());
+  ASSERT_TRUE(core::SaveMapServerMap(world.static_map(), dir.File("room.yaml")).ok());
   lcm::LCM sensor_lcm(sensor), uplink_lcm(uplink);
   ASSERT_TRUE(sensor_lcm.good() && uplink_lcm.good());
   Uplink received;
@@ -71,7 +71,7 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
                  "--vehicle-id",
                  "v1",
                  "--map",
-                 dir / "room.yaml",
+                 dir.File("room.yaml"),
                  "--initial-pose",
                  pose,
                  "--scanner-mount",
@@ -83,15 +83,15 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
                  "--downlink-url",
                  downlink,
                  "--state-dir",
-                 dir / "state",
+                 dir.File("state"),
                  "--final-map",
-                 dir / "final.yaml",
+                 dir.File("final.yaml"),
                  "--quiet"},
-                dir / "out.txt", dir / "err.txt");
+                dir.File("out.txt"), dir.File("err.txt"));
   ASSERT_TRUE(agent.started());
   // The agent is up once its first heartbeat arrives (deadline only against a hang).
   for (int i = 0; i < 200 && received.status.empty(); ++i) uplink_lcm.handleTimeout(50);
-  ASSERT_FALSE(received.status.empty()) << ReadText(dir / "err.txt");
+  ASSERT_FALSE(received.status.empty()) << ReadText(dir.File("err.txt"));
 
   // 16 simulated seconds at 4x.
   const std::map<int64_t, core::Pose2> truth = testing::PublishSensors(sensor_lcm, world, 4.0, [&] {
@@ -100,7 +100,7 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
   });
   for (int i = 0; i < 10; ++i) uplink_lcm.handleTimeout(50);  // the last poses
   agent.Signal(SIGINT);
-  EXPECT_EQ(agent.Wait(20.0), 0) << ReadText(dir / "err.txt");
+  EXPECT_EQ(agent.Wait(20.0), 0) << ReadText(dir.File("err.txt"));
   while (uplink_lcm.handleTimeout(200) > 0) {  // its last STATUS, sent at exit
   }
 
@@ -128,30 +128,31 @@ TEST(AgentProcessTest, LocalizesOverMulticastAndStopsCleanlyOnSigint) {
   }
   EXPECT_GT(close, static_cast<int>(received.poses.size()) * 9 / 10);
   // The final line and the final map.
-  const std::string out = ReadText(dir / "out.txt");
+  const std::string out = ReadText(dir.File("out.txt"));
   EXPECT_EQ(out.rfind("agent v1: scans ", 0), 0u) << out;
   EXPECT_NE(out.find(" map_version 0 tempmaps 0"), std::string::npos) << out;
-  auto final_map = core::LoadMapServerMap(dir / "final.yaml");
+  auto final_map = core::LoadMapServerMap(dir.File("final.yaml"));
   ASSERT_TRUE(final_map.ok()) << final_map.status().ToString();
   EXPECT_EQ(final_map->grid.geometry().width(), world.static_map().geometry().width());
 }
 
 TEST(AgentProcessTest, BadFlagsAndAMissingMapFailWithAClearMessage) {
-  testing::TempDir dir;
+  fleetmap::testing::ScratchFolder dir;
   // Output is appended: each run writes files of its own.
-  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v 1"}, dir / "o1", dir / "e1", 20),
-            2);
-  EXPECT_NE(ReadText(dir / "e1").find("vehicle_id"), std::string::npos);
+  EXPECT_EQ(
+      RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v 1"}, dir.File("o1"), dir.File("e1"), 20),
+      2);
+  EXPECT_NE(ReadText(dir.File("e1")).find("vehicle_id"), std::string::npos);
   EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--initial-pose", "1,2"},
-                      dir / "o2", dir / "e2", 20),
+                      dir.File("o2"), dir.File("e2"), 20),
             2);
-  EXPECT_NE(ReadText(dir / "e2").find("X,Y,THETA"), std::string::npos);
-  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--map", dir / "none.yaml"},
-                      dir / "o3", dir / "e3", 20),
+  EXPECT_NE(ReadText(dir.File("e2")).find("X,Y,THETA"), std::string::npos);
+  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--map", dir.File("none.yaml")},
+                      dir.File("o3"), dir.File("e3"), 20),
             1);
-  EXPECT_NE(ReadText(dir / "e3").find("none.yaml"), std::string::npos);
-  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--help"}, dir / "o4", dir / "e4", 20), 0);
-  EXPECT_NE(ReadText(dir / "o4").find("--initial-pose"), std::string::npos);
+  EXPECT_NE(ReadText(dir.File("e3")).find("none.yaml"), std::string::npos);
+  EXPECT_EQ(RunToExit({FLEETMAP_AGENT_BINARY, "--help"}, dir.File("o4"), dir.File("e4"), 20), 0);
+  EXPECT_NE(ReadText(dir.File("o4")).find("--initial-pose"), std::string::npos);
 }
 
 }  // namespace

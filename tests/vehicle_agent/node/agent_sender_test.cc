@@ -13,33 +13,14 @@
 #include "fleetmap/pose_with_covariance_t.hpp"
 #include "fleetmap/status_t.hpp"
 #include "lcmtypes/convert.h"
+#include "tests/edge/recording_publisher.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-struct Sent {
-  Link link;
-  std::string channel;
-  std::vector<uint8_t> bytes;
-};
-
-class RecordingPublisher : public Publisher {
- public:
-  bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override {
-    sent.push_back({link, channel, bytes});
-    return accept;
-  }
-  bool accept = true;
-  std::vector<Sent> sent;
-};
-
-template <typename T>
-T Payload(const Sent& s) {
-  auto m = lcmtypes::Decode<T>(s.bytes.data(),
-                               static_cast<int>(auth::PayloadSize(s.bytes.data(), s.bytes.size())));
-  EXPECT_TRUE(m.ok()) << s.channel << ": " << m.status().ToString();
-  return m.ok() ? std::move(m).value() : T();
-}
+using edge::testing::Payload;
+using edge::testing::RecordingPublisher;
+using edge::testing::SentMessage;
 
 class AgentSenderTest : public ::testing::Test {
  protected:
@@ -129,7 +110,7 @@ TEST_F(AgentSenderTest, WithAFleetKeyEverythingIsSignedAsTheVehicle) {
   sender.SendStatus(7, "running", {{"scans", 12}}, /*authenticated=*/true, 2.0);
   ASSERT_EQ(out_.sent.size(), 2u);
   auth::Verifier verifier(key);
-  for (const Sent& s : out_.sent) {
+  for (const SentMessage& s : out_.sent) {
     auth::Opened opened;
     EXPECT_EQ(
         verifier.Open(s.channel, s.bytes.data(), static_cast<int>(s.bytes.size()), "v1", &opened),

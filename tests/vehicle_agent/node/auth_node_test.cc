@@ -14,10 +14,10 @@
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 std::unique_ptr<AgentNode> MakeKeyedNode(const sim::World& world, const auth::Key& key,
-                                         MemoryPublisher* out) {
+                                         RecordingPublisher* out) {
   AgentNodeOptions options = testing::RoomOptions(world);
   options.fleet_key = key;
   auto node = AgentNode::Create(options, out, nullptr, world.static_map(), 0.0);
@@ -28,12 +28,12 @@ std::unique_ptr<AgentNode> MakeKeyedNode(const sim::World& world, const auth::Ke
 TEST(AgentAuthTest, EverythingSentIsSignedAsTheVehicle) {
   const sim::World world = testing::RoomWorld();
   const auth::Key key = auth::GenerateKey();
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = MakeKeyedNode(world, key, &out);
   testing::DriveNode(world, *node, 3.0);
   auth::Verifier aggregator_side(key);
   ASSERT_GT(out.sent.size(), 50u);
-  for (const testing::Sent& m : out.sent) {
+  for (const testing::SentMessage& m : out.sent) {
     auth::Opened o;
     ASSERT_EQ(aggregator_side.Open(m.channel, m.bytes.data(), int(m.bytes.size()), "v1", &o),
               auth::Verdict::kAccepted)
@@ -46,7 +46,7 @@ TEST(AgentAuthTest, EverythingSentIsSignedAsTheVehicle) {
 TEST(AgentAuthTest, DownlinkMessagesNotSignedByTheAggregatorAreRefusedAndCounted) {
   const sim::World world = testing::RoomWorld();
   const auth::Key key = auth::GenerateKey();
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = MakeKeyedNode(world, key, &out);
   const auto keyframe = testing::KeyframeMessages(world.static_map(), 1);
   const auto feed = [&](const std::vector<std::vector<uint8_t>>& messages) {

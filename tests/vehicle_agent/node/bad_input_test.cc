@@ -10,7 +10,7 @@
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 class BadInputTest : public ::testing::Test {
  protected:
@@ -31,7 +31,7 @@ class BadInputTest : public ::testing::Test {
   int64_t Counter(const std::string& name) const { return testing::Counter(*node_, name); }
 
   sim::World world_;
-  MemoryPublisher out_;
+  RecordingPublisher out_;
   std::vector<std::string> warnings_;
   std::unique_ptr<AgentNode> node_;
 };

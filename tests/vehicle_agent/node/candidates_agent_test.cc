@@ -13,7 +13,7 @@
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 fleetmap::map_candidates_t Part(int64_t utime, int16_t part, int16_t parts,
                                 std::vector<int32_t> cells) {
@@ -56,7 +56,7 @@ int32_t CellAt(const core::GridGeometry& g, double x, double y) {
 TEST(CandidatesAgentTest, CandidatesTheScansPassThroughAreReportedFree) {
   const sim::World world = testing::RoomWorld(
       "[{id: pallet, rect: {center: [5.5, 4.2], size: [1.2, 0.8]}, appear_s: 0}]", 8.0);
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node =
       AgentNode::Create(testing::RoomOptions(world), &out, nullptr, world.static_map(), 0.0);
   ASSERT_TRUE(node.ok()) << node.status().ToString();
@@ -98,7 +98,7 @@ TEST(CandidatesAgentTest, CandidatesTheScansPassThroughAreReportedFree) {
 TEST(CandidatesAgentTest, ACandidateTheBeamsKeepEndingAtIsReportedHeld) {
   const sim::World world = testing::RoomWorld(
       "[{id: pallet, rect: {center: [5.5, 4.2], size: [1.2, 0.8]}, appear_s: 0}]", 8.0);
-  MemoryPublisher out;
+  RecordingPublisher out;
   AgentNodeOptions options = testing::RoomOptions(world);
   options.pipeline.candidate_watch.report_held_s = 3.0;
   auto node = AgentNode::Create(options, &out, nullptr, world.static_map(), 0.0);

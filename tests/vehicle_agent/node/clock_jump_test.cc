@@ -10,11 +10,11 @@
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 TEST(AgentClockJumpTest, StampsJumpingAheadAndBackAreCountedAndTheAgentCarriesOn) {
   const sim::World world = testing::RoomWorld(testing::kPallet, 24.0);
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = AgentNode::Create(testing::RoomOptions(world), &out, nullptr, world.static_map(), 0.0)
                   .value();
   constexpr double kHour = 3600.0;

@@ -5,22 +5,22 @@
 #include <cmath>
 #include <fstream>
 
+#include "tests/support/scratch_folder.h"
 #include "tests/vehicle_agent/node/node_test_util.h"
-#include "tests/vehicle_agent/node/temp_dir.h"
 #include "vehicle_agent/node/agent_node.h"
 #include "vehicle_agent/node/pose_store.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 struct Started {
   std::unique_ptr<AgentNode> node;
   std::vector<std::string> log;
 };
 
-Started Start(const AgentNodeOptions& options, MemoryPublisher* out, const sim::World& world) {
+Started Start(const AgentNodeOptions& options, RecordingPublisher* out, const sim::World& world) {
   Started s;
   auto* log = &s.log;
   auto node = AgentNode::Create(
@@ -53,7 +53,7 @@ sim::World RoomWithCupboard() {
 }
 
 // The first published pose, and how far it is from the truth then.
-double FirstPoseError(MemoryPublisher& out, const std::map<int64_t, core::Pose2>& truth) {
+double FirstPoseError(RecordingPublisher& out, const std::map<int64_t, core::Pose2>& truth) {
   const auto poses = out.Decoded<fleetmap::pose_with_covariance_t>("POSE_v1");
   if (poses.empty()) return 1e9;
   const core::Pose2& t = truth.at(poses.front().utime);
@@ -62,9 +62,9 @@ double FirstPoseError(MemoryPublisher& out, const std::map<int64_t, core::Pose2>
 
 TEST(LastPoseTest, ARestartWhereTheVehicleStoodStartsFromItsLastPose) {
   const sim::World world = testing::RoomWorld("[]", 30.0);
-  testing::TempDir dir;
+  fleetmap::testing::ScratchFolder dir;
   {
-    MemoryPublisher out;
+    RecordingPublisher out;
     Started first = Start(testing::RoomOptions(world, dir.path()), &out, world);
     testing::DriveNode(world, *first.node, 6.0);
     first.node->Shutdown(6.0);
@@ -74,7 +74,7 @@ TEST(LastPoseTest, ARestartWhereTheVehicleStoodStartsFromItsLastPose) {
   EXPECT_NEAR(kept->base_in_map.x_m, world.VehicleStateAt(0, 6.0).pose.x_m, 0.1);
 
   // Restarted at 6 s with a given pose 2.5 m behind: the kept pose wins, from the first scan.
-  MemoryPublisher out;
+  RecordingPublisher out;
   Started second = Start(testing::RoomOptions(world, dir.path()), &out, world);
   const auto truth = testing::DriveNode(world, *second.node, 8.0, {}, 6.0);
   EXPECT_LT(FirstPoseError(out, truth), 0.1);
@@ -84,16 +84,16 @@ TEST(LastPoseTest, ARestartWhereTheVehicleStoodStartsFromItsLastPose) {
 
 TEST(LastPoseTest, AVehicleThatMovedMeanwhileDoesNotUseItAndFindsItself) {
   const sim::World world = RoomWithCupboard();
-  testing::TempDir dir;
+  fleetmap::testing::ScratchFolder dir;
   {
-    MemoryPublisher out;
+    RecordingPublisher out;
     Started first = Start(testing::RoomOptions(world, dir.path()), &out, world);
     testing::DriveNode(world, *first.node, 4.0);
     first.node->Shutdown(4.0);
   }
   // Back at 9 s: 2.5 m further on than the kept pose, and given a pose across the room,
   // turned, whose beams would go through the walls.
-  MemoryPublisher out;
+  RecordingPublisher out;
   AgentNodeOptions options = testing::RoomOptions(world, dir.path());
   options.pipeline.localizer.initial_pose_in_map = core::Pose2(3.0, 4.5, 2.0);
   Started second = Start(options, &out, world);
@@ -113,10 +113,10 @@ TEST(LastPoseTest, AVehicleThatMovedMeanwhileDoesNotUseItAndFindsItself) {
 
 TEST(LastPoseTest, AFileThatIsNotAKeptPoseIsSaidAndIgnored) {
   const sim::World world = testing::RoomWorld();
-  testing::TempDir dir;
-  std::ofstream(dir / "last_pose") << "fleetmap-last-pose-1 1 2 nan 0 0 0 3\n";
+  fleetmap::testing::ScratchFolder dir;
+  std::ofstream(dir.File("last_pose")) << "fleetmap-last-pose-1 1 2 nan 0 0 0 3\n";
   EXPECT_EQ(PoseStore(dir.path()).Load().status().code(), core::StatusCode::kDataLoss);
-  MemoryPublisher out;
+  RecordingPublisher out;
   Started s = Start(testing::RoomOptions(world, dir.path()), &out, world);
   const auto truth = testing::DriveNode(world, *s.node, 2.0);
   EXPECT_TRUE(Logged(s.log, "last pose not used")) << s.log.size();
@@ -124,7 +124,7 @@ TEST(LastPoseTest, AFileThatIsNotAKeptPoseIsSaidAndIgnored) {
 }
 
 TEST(PoseStoreTest, KeepsAPoseAndSaysWhenItStillHolds) {
-  testing::TempDir dir;
+  fleetmap::testing::ScratchFolder dir;
   const PoseStore store(dir.path());
   EXPECT_EQ(store.Load().status().code(), core::StatusCode::kNotFound);
   const KeptPose kept{core::Pose2(12.5, -3.25, 1.5), core::Pose2(100.0, 20.0, -0.5), 7};
@@ -139,7 +139,7 @@ TEST(PoseStoreTest, KeepsAPoseAndSaysWhenItStillHolds) {
   EXPECT_FALSE(StillThere(kept, core::Pose2(100.05, 20.0, -0.5), o));
   EXPECT_FALSE(StillThere(kept, core::Pose2(100.0, 20.0, -0.45), o));
   EXPECT_FALSE(StillThere(kept, core::Pose2(), o));  // odometry that restarted with the vehicle
-  std::ofstream(dir / "last_pose") << "fleetmap-last-pose-1 1 2 3 4 5 6 7 extra\n";
+  std::ofstream(dir.File("last_pose")) << "fleetmap-last-pose-1 1 2 3 4 5 6 7 extra\n";
   EXPECT_EQ(store.Load().status().code(), core::StatusCode::kDataLoss);
   EXPECT_FALSE(PoseStore("").enabled());
   KeptPoseOptions bad;

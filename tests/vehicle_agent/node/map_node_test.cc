@@ -7,7 +7,7 @@
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 core::OccupancyGrid WithBox(core::OccupancyGrid grid, int x0, int y0) {
   for (int y = y0; y < y0 + 10; ++y)
@@ -21,7 +21,7 @@ void FeedAll(AgentNode& node, const std::string& channel, const std::vector<T>& 
   for (const T& m : messages) testing::FeedMessage(node, Link::kDownlink, channel, m, now_s);
 }
 
-std::vector<int32_t> PoseVersions(const MemoryPublisher& out, size_t from) {
+std::vector<int32_t> PoseVersions(const RecordingPublisher& out, size_t from) {
   std::vector<int32_t> versions;
   for (const auto& p : out.Decoded<fleetmap::pose_with_covariance_t>("POSE_v1", from))
     versions.push_back(p.map_version);
@@ -32,7 +32,7 @@ TEST(MapNodeTest, WithoutAMapItAsksEverySecondThenLocalizesOnTheKeyframe) {
   const sim::World world = testing::RoomWorld();
   AgentNodeOptions options = testing::RoomOptions(world);
   options.pipeline.localizer.initial_pose_in_map = world.VehicleStateAt(0, 2.5).pose;
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = AgentNode::Create(options, &out, nullptr, std::nullopt, 0.0).value();
   EXPECT_EQ(node->state(), "waiting_for_map");
   testing::DriveNode(world, *node, 2.5);
@@ -81,7 +81,7 @@ TEST(MapNodeTest, WithoutAMapItAsksEverySecondThenLocalizesOnTheKeyframe) {
 
 TEST(MapNodeTest, FromTheStaticMapItCatchesUpWithDeltasAndFollowsTheHeartbeat) {
   const sim::World world = testing::RoomWorld();
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = AgentNode::Create(testing::RoomOptions(world), &out, nullptr, world.static_map(), 0.0)
                   .value();
   node->Tick(0.0);
@@ -121,7 +121,7 @@ TEST(MapNodeTest, FromTheStaticMapItCatchesUpWithDeltasAndFollowsTheHeartbeat) {
 
 TEST(MapNodeTest, AnAggregatorThatRestartedWithoutItsStateIsFollowedAgain) {
   const sim::World world = testing::RoomWorld();
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = AgentNode::Create(testing::RoomOptions(world), &out, nullptr, world.static_map(), 0.0)
                   .value();
   const core::OccupancyGrid v0 = world.static_map(), v1 = WithBox(v0, 20, 100),

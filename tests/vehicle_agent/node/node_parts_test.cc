@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "core/map/temp_map_file.h"
-#include "tests/vehicle_agent/node/temp_dir.h"
+#include "tests/support/scratch_folder.h"
 #include "vehicle_agent/node/agent_node_options.h"
 #include "vehicle_agent/node/input_queue.h"
 #include "vehicle_agent/node/sequence_store.h"
@@ -46,17 +46,17 @@ TEST(InputQueueTest, AHardBoundDropsTheOldestAndCountsIt) {
 }
 
 TEST(SequenceStoreTest, NumberingGoesOnAcrossRestartsAndNeverReusesAPendingMap) {
-  testing::TempDir dir;
+  fleetmap::testing::ScratchFolder dir;
   EXPECT_EQ(SequenceStore("").Load().next, 1);
-  SequenceStore store(dir / "state");
+  SequenceStore store(dir.File("state"));
   StoredSequence s = store.Load();
   EXPECT_EQ(s.next, 1);
   EXPECT_TRUE(s.issue.ok());  // a first start
   ASSERT_TRUE(store.Store(8).ok());
   EXPECT_EQ(store.Load().next, 8);
   // A pending map numbered above the counter wins (the counter file was older).
-  std::ofstream(dir / "state/tempmap_12.fmtm") << "x";
-  std::ofstream(dir / "state/tempmap_x.fmtm") << "x";
+  std::ofstream(dir.File("state/tempmap_12.fmtm")) << "x";
+  std::ofstream(dir.File("state/tempmap_x.fmtm")) << "x";
   EXPECT_EQ(store.Load().next, 13);
   // A corrupt counter is reported, and the pending files still keep numbers apart.
   std::ofstream(store.path()) << "seven\n";

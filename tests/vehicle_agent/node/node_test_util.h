@@ -15,44 +15,15 @@
 #include "lcmtypes/convert.h"
 #include "lcmtypes/transport_convert.h"
 #include "sim/simulator.h"
+#include "tests/edge/recording_publisher.h"
 #include "tests/sim/sim_test_util.h"
 #include "vehicle_agent/node/agent_messages.h"
 #include "vehicle_agent/node/agent_node.h"
 
 namespace fleetmap::vehicle_agent::node::testing {
 
-struct Sent {
-  Link link;
-  std::string channel;
-  std::vector<uint8_t> bytes;
-};
-
-class MemoryPublisher : public Publisher {
- public:
-  bool Publish(Link link, const std::string& channel, const std::vector<uint8_t>& bytes) override {
-    sent.push_back({link, channel, bytes});
-    return true;
-  }
-  template <typename T>
-  std::vector<T> Decoded(const std::string& channel, size_t from = 0) const {
-    std::vector<T> out;
-    for (size_t i = from; i < sent.size(); ++i) {
-      if (sent[i].channel != channel) continue;
-      auto m = lcmtypes::Decode<T>(
-          sent[i].bytes.data(),
-          static_cast<int>(auth::PayloadSize(sent[i].bytes.data(), sent[i].bytes.size())));
-      if (!m.ok()) throw std::runtime_error(channel + ": " + m.status().ToString());
-      out.push_back(std::move(m).value());
-    }
-    return out;
-  }
-  size_t Count(const std::string& channel, size_t from = 0) const {
-    size_t n = 0;
-    for (size_t i = from; i < sent.size(); ++i) n += sent[i].channel == channel;
-    return n;
-  }
-  std::vector<Sent> sent;
-};
+using edge::testing::RecordingPublisher;
+using edge::testing::SentMessage;
 
 // One vehicle "v1" crossing the room; `objects` is YAML for the scenario's objects list.
 inline sim::World RoomWorld(const std::string& objects = "[]", double duration_s = 16.0) {

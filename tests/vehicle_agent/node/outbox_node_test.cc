@@ -7,13 +7,13 @@
 #include "core/map/temp_map_file.h"
 #include "fleetmap/status_t.hpp"
 #include "fleetmap/tempmap_ack_t.hpp"
+#include "tests/support/scratch_folder.h"
 #include "tests/vehicle_agent/node/node_test_util.h"
-#include "tests/vehicle_agent/node/temp_dir.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 // 200 x 150 cells: 4 x 3 = 12 tiles of 64 cells.
 core::TempMap HandMadeMap(int32_t sequence) {
@@ -40,7 +40,7 @@ fleetmap::tempmap_ack_t MakeAck(int32_t sequence, int8_t outcome, std::vector<in
   return a;
 }
 
-std::set<int32_t> TileIndices(const MemoryPublisher& out, size_t from) {
+std::set<int32_t> TileIndices(const RecordingPublisher& out, size_t from) {
   std::set<int32_t> indices;
   for (const auto& t : out.Decoded<fleetmap::tempmap_tile_t>("TEMPMAP_v1", from))
     indices.insert(t.tile_index);
@@ -52,7 +52,7 @@ class OutboxNodeTest : public ::testing::Test {
   // A node whose state folder holds unacknowledged maps from a run before.
   std::unique_ptr<AgentNode> NodeWithPendingMap(std::vector<int32_t> sequences = {4}) {
     for (int32_t s : sequences) {
-      const std::string file = dir_ / ("tempmap_" + std::to_string(s) + ".fmtm");
+      const std::string file = dir_.File("tempmap_" + std::to_string(s) + ".fmtm");
       EXPECT_TRUE(core::SaveTempMap(HandMadeMap(s), file).ok());
     }
     const sim::World world = testing::RoomWorld();
@@ -64,8 +64,8 @@ class OutboxNodeTest : public ::testing::Test {
   void SendAck(AgentNode& node, const fleetmap::tempmap_ack_t& ack, double now_s) {
     testing::FeedMessage(node, Link::kDownlink, "TEMPMAP_ACK", ack, now_s);
   }
-  testing::TempDir dir_;
-  MemoryPublisher out_;
+  fleetmap::testing::ScratchFolder dir_;
+  RecordingPublisher out_;
 };
 
 TEST_F(OutboxNodeTest, PendingAckResendsOnlyTheMissingTilesAfterTheBackoff) {
@@ -91,7 +91,7 @@ TEST_F(OutboxNodeTest, PendingAckResendsOnlyTheMissingTilesAfterTheBackoff) {
   EXPECT_EQ(out_.Count("TEMPMAP_v1", mark), 0u);
   EXPECT_EQ(testing::Counter(*node, "maps_merged"), 1);
   EXPECT_EQ(testing::Counter(*node, "tempmaps_pending"), 0);
-  EXPECT_FALSE(std::filesystem::exists(dir_ / "tempmap_4.fmtm"));
+  EXPECT_FALSE(std::filesystem::exists(dir_.File("tempmap_4.fmtm")));
   // A repeated MERGED is not counted twice; another vehicle's ack is not ours.
   SendAck(*node, MakeAck(4, fleetmap::tempmap_ack_t::MERGED, {}), 140.0);
   auto other = MakeAck(4, fleetmap::tempmap_ack_t::MERGED, {});
@@ -173,7 +173,7 @@ TEST_F(OutboxNodeTest, AMapTheAgentBuiltIsSentAgainAfterARestartAndNumberingGoes
   const sim::World world = testing::RoomWorld(testing::kPallet);
   std::set<int32_t> first_run;
   {
-    MemoryPublisher out;
+    RecordingPublisher out;
     auto node = AgentNode::Create(testing::RoomOptions(world, dir_.path()), &out, nullptr,
                                   world.static_map(), 0.0)
                     .value();
@@ -184,7 +184,7 @@ TEST_F(OutboxNodeTest, AMapTheAgentBuiltIsSentAgainAfterARestartAndNumberingGoes
     ASSERT_FALSE(first_run.empty());
     EXPECT_EQ(testing::Counter(*node, "tempmaps_pending"), static_cast<int64_t>(first_run.size()));
   }  // the agent stops without any acknowledgement
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = AgentNode::Create(testing::RoomOptions(world, dir_.path()), &out, nullptr,
                                 world.static_map(), 500.0)
                   .value();
@@ -200,7 +200,7 @@ TEST_F(OutboxNodeTest, AMapTheAgentBuiltIsSentAgainAfterARestartAndNumberingGoes
   // Once merged, the files are gone and a third start sends nothing.
   for (int32_t s : first_run)
     SendAck(*node, MakeAck(s, fleetmap::tempmap_ack_t::MERGED, {}), 501.0);
-  MemoryPublisher third_out;
+  RecordingPublisher third_out;
   auto third = AgentNode::Create(testing::RoomOptions(world, dir_.path()), &third_out, nullptr,
                                  world.static_map(), 600.0)
                    .value();

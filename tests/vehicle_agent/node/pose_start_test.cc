@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "tests/vehicle_agent/node/temp_dir.h"
+#include "tests/support/scratch_folder.h"
 #include "vehicle_agent/localization/particle_set.h"
 
 namespace fleetmap::vehicle_agent::node {
@@ -40,7 +40,7 @@ class PoseStartTest : public ::testing::Test {
     return step;
   }
 
-  testing::TempDir dir_;
+  fleetmap::testing::ScratchFolder dir_;
   std::vector<std::string> lines_;
   CauseLog log_;
   AgentNodeCounters counters_;

@@ -20,7 +20,7 @@
 namespace fleetmap::vehicle_agent::node {
 namespace {
 
-using testing::MemoryPublisher;
+using testing::RecordingPublisher;
 
 // The emulator's scanner, `skip` scans into the run (a restarted scanner goes on in time).
 std::unique_ptr<sim::sick::ScannerEmulator> StartScanner(const sim::World& world, int port,
@@ -62,7 +62,7 @@ class Feeder {
     node_->Tick(scan.scan.stamp_s);
   }
   // Position error of every POSE_ the node sent, in order.
-  std::vector<double> Errors(const MemoryPublisher& out) const {
+  std::vector<double> Errors(const RecordingPublisher& out) const {
     std::vector<double> errors;
     for (const auto& p : out.Decoded<fleetmap::pose_with_covariance_t>("POSE_v1")) {
       const core::Pose2& t = truth_.at(p.utime);
@@ -120,7 +120,7 @@ TEST(SickAgentTest, LocalizesFromAScannerOverTcpAndCarriesOnAfterTheScannerResta
   AgentNodeOptions options = testing::RoomOptions(world);
   options.scans_from_lcm = false;
   options.odometry_from_lcm = false;
-  MemoryPublisher out;
+  RecordingPublisher out;
   auto node = AgentNode::Create(options, &out, nullptr, world.static_map(), 0.0).value();
   for (const Subscription& s : node->Subscriptions()) EXPECT_EQ(s.link, Link::kDownlink);
 
@@ -188,7 +188,7 @@ TEST(SickAgentTest, AfterTheScannerConnectionIsCutAndRestoredTheAgentReconnects)
     AgentNodeOptions options = testing::RoomOptions(world);
     options.scans_from_lcm = false;
     options.odometry_from_lcm = false;
-    MemoryPublisher out;
+    RecordingPublisher out;
     auto node = AgentNode::Create(options, &out, nullptr, world.static_map(), 0.0).value();
     SickInputOptions input_options = AgentConfig().sick;  // the agent's defaults
     input_options.client.host = "127.0.0.1";

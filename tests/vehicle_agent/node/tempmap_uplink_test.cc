@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "lcmtypes/channels.h"
-#include "tests/vehicle_agent/node/temp_dir.h"
+#include "tests/support/scratch_folder.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
@@ -55,7 +55,7 @@ class TempMapUplinkTest : public ::testing::Test {
 };
 
 TEST_F(TempMapUplinkTest, NumbersGoOnDiskABlockAheadBeforeAMapLeavesAndPendingMapsReload) {
-  testing::TempDir dir;
+  fleetmap::testing::ScratchFolder dir;
   auto uplink = Make(dir.path());
   uplink->StartNumberingAt(5);
   const int32_t block = TempMapUplink::kSequenceBlock;

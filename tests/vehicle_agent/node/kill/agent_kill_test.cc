@@ -19,9 +19,9 @@
 #include "fleetmap/tempmap_ack_t.hpp"
 #include "tests/support/multicast.h"
 #include "tests/support/process.h"
+#include "tests/support/scratch_folder.h"
 #include "tests/vehicle_agent/node/node_test_util.h"
 #include "tests/vehicle_agent/node/sensor_feed.h"
-#include "tests/vehicle_agent/node/temp_dir.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
@@ -94,7 +94,7 @@ class AgentKillTest : public ::testing::Test {
 
   void SetUp() override {
     FLEETMAP_REQUIRE_MULTICAST(sensor_);
-    ASSERT_TRUE(core::SaveMapServerMap(world_.static_map(), dir_ / "room.yaml").ok());
+    ASSERT_TRUE(core::SaveMapServerMap(world_.static_map(), dir_.File("room.yaml")).ok());
     ASSERT_TRUE(sensor_lcm_.good() && uplink_lcm_.good() && downlink_lcm_.good());
     uplink_lcm_.subscribe("TEMPMAP_v1", &Heard<fleetmap::tempmap_tile_t>::On, &tiles_);
     uplink_lcm_.subscribe("STATUS_agent_v1", &Heard<fleetmap::status_t>::On, &agent_status_);
@@ -108,13 +108,13 @@ class AgentKillTest : public ::testing::Test {
     const core::Pose2 start = world_.VehicleStateAt(0, 0.0).pose;
     auto agent = std::make_unique<Process>(
         std::vector<std::string>{FLEETMAP_AGENT_BINARY, "--vehicle-id", "v1", "--map",
-                                 dir_ / "room.yaml", "--initial-pose",
+                                 dir_.File("room.yaml"), "--initial-pose",
                                  std::to_string(start.x_m) + "," + std::to_string(start.y_m) + "," +
                                      std::to_string(start.theta_rad),
                                  "--scanner-mount", "0.3,0,0", "--sensor-url", sensor_,
                                  "--uplink-url", uplink_, "--downlink-url", downlink, "--state-dir",
                                  state_dir()},
-        dir_ / "agent_out.txt", dir_ / "agent_err.txt");
+        dir_.File("agent_out.txt"), dir_.File("agent_err.txt"));
     EXPECT_TRUE(agent->started());
     return agent;
   }
@@ -167,23 +167,23 @@ class AgentKillTest : public ::testing::Test {
   std::vector<std::string> AggregatorArgs() const {
     return {FLEETMAP_AGGREGATOR_BINARY,
             "--map",
-            dir_ / "room.yaml",
+            dir_.File("room.yaml"),
             "--state-dir",
-            dir_ / "aggregator_state",
+            dir_.File("aggregator_state"),
             "--uplink-url",
             uplink_,
             "--downlink-url",
             downlink_};
   }
 
-  std::string state_dir() const { return dir_ / "agent_state"; }
+  std::string state_dir() const { return dir_.File("agent_state"); }
   std::string Logs() const {
-    return "agent:\n" + ReadText(dir_ / "agent_err.txt") + "aggregator:\n" +
-           ReadText(dir_ / "aggregator_err.txt");
+    return "agent:\n" + ReadText(dir_.File("agent_err.txt")) + "aggregator:\n" +
+           ReadText(dir_.File("aggregator_err.txt"));
   }
 
   const sim::World world_ = testing::RoomWorld(testing::kPallet);
-  testing::TempDir dir_;
+  fleetmap::testing::ScratchFolder dir_;
   // Groups and ports of each test of its own: ctest runs them at the same time, and two agents
   // "v1" on one group would answer each other's maps.
   const int base_ = TestBase();
@@ -220,7 +220,8 @@ TEST_F(AgentKillTest, KilledWithUnacknowledgedMapsItSendsThemAgainAndNoneIsMerge
   // 2. The aggregator starts, then the agent again on the same state folder but deaf to the
   // downlink: it reloads the maps and sends them, the aggregator merges each (MERGED, heard
   // by the test only), and the agent, which never hears it, is killed with all still pending.
-  Process aggregator(AggregatorArgs(), dir_ / "aggregator_out.txt", dir_ / "aggregator_err.txt");
+  Process aggregator(AggregatorArgs(), dir_.File("aggregator_out.txt"),
+                     dir_.File("aggregator_err.txt"));
   ASSERT_TRUE(Listen(20.0, [&] { return !aggregator_status_.messages.empty(); })) << Logs();
   size_t tiles_from = tiles_.messages.size(), acks_from = acks_.messages.size();
   agent = StartAgent(deaf_downlink_);
@@ -279,7 +280,7 @@ TEST_F(AgentKillTest, KilledWithUnacknowledgedMapsItSendsThemAgainAndNoneIsMerge
   // The aggregator's history: each map acknowledged MERGED merged exactly once, one version
   // per map.
   auto restored = aggregator::Aggregator::Open(world_.static_map(), aggregator::AggregatorOptions(),
-                                               dir_ / "aggregator_state");
+                                               dir_.File("aggregator_state"));
   ASSERT_TRUE(restored.ok()) << restored.status().ToString();
   std::multiset<int32_t> merged;
   for (const aggregator::MergeCommit& c : restored->store().provenance().commits()) {
@@ -305,7 +306,8 @@ int64_t NumberAfter(const std::string& path, const std::string& key) {
 // before it exits hears it merged and takes the version it made: nothing is left to resend
 // after a restart, and the map it writes at exit is the fleet's.
 TEST_F(AgentKillTest, StoppedWhileBuildingItAwaitsTheMergeOfItsLastMap) {
-  Process aggregator(AggregatorArgs(), dir_ / "aggregator_out.txt", dir_ / "aggregator_err.txt");
+  Process aggregator(AggregatorArgs(), dir_.File("aggregator_out.txt"),
+                     dir_.File("aggregator_err.txt"));
   ASSERT_TRUE(Listen(20.0, [&] { return !aggregator_status_.messages.empty(); })) << Logs();
   auto agent = StartAgent(downlink_);
   ASSERT_TRUE(FirstAgentStatus()) << Logs();
@@ -327,9 +329,10 @@ TEST_F(AgentKillTest, StoppedWhileBuildingItAwaitsTheMergeOfItsLastMap) {
       << Logs();
   aggregator.Signal(SIGTERM);
   ASSERT_EQ(aggregator.Wait(20.0), 0) << Logs();
-  const int64_t fleet_version = NumberAfter(dir_ / "aggregator_out.txt", "aggregator: version ");
+  const int64_t fleet_version =
+      NumberAfter(dir_.File("aggregator_out.txt"), "aggregator: version ");
   EXPECT_GE(fleet_version, 1) << Logs();
-  EXPECT_EQ(NumberAfter(dir_ / "agent_out.txt", " map_version "), fleet_version) << Logs();
+  EXPECT_EQ(NumberAfter(dir_.File("agent_out.txt"), " map_version "), fleet_version) << Logs();
 }
 
 }  // namespace

@@ -85,7 +85,7 @@ TEST(AgentCanVcanTest, CanOdometryFromCanplayerDrivesTheAgent) {
   AgentNodeOptions options = testing::RoomOptions(world);
   options.scans_from_lcm = false;
   options.odometry_from_lcm = false;
-  testing::MemoryPublisher out;
+  testing::RecordingPublisher out;
   auto node = AgentNode::Create(options, &out, nullptr, world.static_map(), 0.0).value();
   const double offset =
       samples.front().stamp_s - (log->odometry.front().stamp_s - log_options.start_time_s);
