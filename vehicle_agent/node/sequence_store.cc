@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 
 #include "core/io/file_io.h"
+#include "core/io/number_text.h"
 
 namespace fleetmap::vehicle_agent::node {
 namespace {
@@ -16,12 +16,9 @@ namespace fs = std::filesystem;
 bool ParsePositive(const std::string& text, int32_t& out) {
   std::string digits = text;
   if (!digits.empty() && digits.back() == '\n') digits.pop_back();
-  if (digits.empty() || digits.size() > 10 ||
-      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return false;
-  const long long v = std::strtoll(digits.c_str(), nullptr, 10);
-  if (v < 1 || v > INT32_MAX) return false;
-  out = static_cast<int32_t>(v);
+  const core::Result<uint64_t> v = core::ParseCount(digits, "sequence", INT32_MAX);
+  if (!v.ok() || *v < 1) return false;
+  out = static_cast<int32_t>(*v);
   return true;
 }
 
