@@ -3,8 +3,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
 #include "core/io/file_io.h"
 #include "core/map/pgm.h"
 #include "tests/support/scratch_folder.h"
@@ -12,7 +10,6 @@
 namespace fleetmap::core {
 namespace {
 
-namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 const Bgr kWhite{255, 255, 255};
@@ -24,7 +21,6 @@ class MapRenderTest : public ::testing::Test {
   std::string File(const std::string& name) const { return folder_.File(name); }
 
   fleetmap::testing::ScratchFolder folder_;
-  const fs::path dir_{folder_.path()};
 };
 
 // 4 x 3 cells: row 0 (bottom) free except an occupied cell at x = 1, row 2 (top) occupied at

@@ -40,13 +40,13 @@ class MapIoTest : public ::testing::Test {
   Result<LoadedMap> Load() const { return LoadMapServerMap(File("map.yaml")); }
   std::vector<std::string> FileNames() const {
     std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename());
+    for (const auto& e : fs::directory_iterator(folder_.path()))
+      names.push_back(e.path().filename());
     std::sort(names.begin(), names.end());
     return names;
   }
 
   fleetmap::testing::ScratchFolder folder_;
-  const fs::path dir_{folder_.path()};
 };
 
 std::string StatusText(const Result<LoadedMap>& r) { return r.ok() ? "ok" : r.status().ToString(); }
@@ -316,20 +316,20 @@ TEST_F(MapIoTest, SaveToUnwritablePlacesIsIoErrorAndLeavesNoFile) {
   EXPECT_EQ(under_file.code(), StatusCode::kIoError);
 
   // The YAML cannot replace a folder: the image is written, the YAML and temp files are not.
-  fs::create_directory(dir_ / "map.yaml");
+  fs::create_directory(File("map.yaml"));
   const Status onto_folder = SaveMapServerMap(grid, File("map.yaml"));
   EXPECT_EQ(onto_folder.code(), StatusCode::kIoError);
   EXPECT_THAT(onto_folder.message(), HasSubstr("map.yaml"));
   EXPECT_EQ(FileNames(), (std::vector<std::string>{"map.pgm", "map.yaml", "plain_file"}));
-  EXPECT_TRUE(fs::is_directory(dir_ / "map.yaml"));
+  EXPECT_TRUE(fs::is_directory(File("map.yaml")));
 
   if (geteuid() != 0) {  // root writes into read-only folders anyway
-    fs::create_directory(dir_ / "ro");
-    fs::permissions(dir_ / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+    fs::create_directory(File("ro"));
+    fs::permissions(File("ro"), fs::perms::owner_read | fs::perms::owner_exec);
     const Status read_only = SaveMapServerMap(grid, File("ro/map.yaml"));
     EXPECT_EQ(read_only.code(), StatusCode::kIoError);
     EXPECT_THAT(read_only.message(), HasSubstr("Permission denied"));
-    EXPECT_TRUE(fs::is_empty(dir_ / "ro"));
+    EXPECT_TRUE(fs::is_empty(File("ro")));
   }
 }
 

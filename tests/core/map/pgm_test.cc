@@ -21,7 +21,6 @@ class PgmTest : public ::testing::Test {
   std::string File(const std::string& name) const { return folder_.File(name); }
 
   fleetmap::testing::ScratchFolder folder_;
-  const fs::path dir_{folder_.path()};
 };
 
 GrayImage Gradient(int width, int height) {
@@ -199,12 +198,13 @@ TEST_F(PgmTest, FailedAtomicWriteLeavesNoFile) {
   EXPECT_THAT(no_folder.message(), HasSubstr("temporary file"));
 
   // Renaming onto a folder fails after the temporary file was written: it must be removed.
-  fs::create_directory(dir_ / "taken");
+  fs::create_directory(File("taken"));
   const Status onto_folder = WriteFileAtomically(File("taken"), "x");
   EXPECT_EQ(onto_folder.code(), StatusCode::kIoError);
   EXPECT_THAT(onto_folder.message(), HasSubstr("rename"));
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename());
+  for (const auto& entry : fs::directory_iterator(folder_.path()))
+    names.push_back(entry.path().filename());
   EXPECT_EQ(names, std::vector<std::string>{"taken"});
 }
 
