@@ -89,6 +89,36 @@ double MeanParticles() {
   return sum / static_cast<double>(Steps().size());
 }
 
+// A new map version on a building of 12M cells (200 x 150 m at 5 cm: walls and rack rows 1.2 m
+// deep every 4.2 m), with a pallet (1.2 x 0.8 m) put down or taken away: argument 0 takes the
+// whole map in afresh (SetMap), 1 only around the pallet's tile (UpdateMap, as the agent does
+// with a delta).
+void BM_MapSwap(benchmark::State& state) {
+  static const core::OccupancyGrid hall = [] {
+    core::OccupancyGrid g(core::GridGeometry(0.05, 4000, 3000));
+    for (int y = 0; y < 3000; ++y)
+      for (int x = 0; x < 4000; ++x) {
+        const bool wall = x < 4 || y < 4 || x >= 3996 || y >= 2996;
+        const bool rack = y % 84 >= 60 && x >= 100 && x < 3900 && x % 600 >= 80;
+        g.SetState({x, y}, wall || rack ? core::CellState::kOccupied : core::CellState::kFree);
+      }
+    return g;
+  }();
+  core::OccupancyGrid pallet = hall;
+  const core::CellWindow tile{1984, 1472, 64, 64};
+  for (int y = 1490; y < 1506; ++y)
+    for (int x = 1990; x < 2014; ++x) pallet.SetState({x, y}, core::CellState::kOccupied);
+  Localizer localizer{LocalizerOptions()};
+  (void)localizer.SetMap(hall, 1);
+  int32_t version = 1;
+  for (auto _ : state) {
+    const core::OccupancyGrid& map = ++version % 2 ? hall : pallet;
+    benchmark::DoNotOptimize(state.range(0) == 1 ? localizer.UpdateMap(map, version, tile)
+                                                 : localizer.SetMap(map, version));
+  }
+}
+BENCHMARK(BM_MapSwap)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 void BM_Divergence(benchmark::State& state) {
   DivergenceDetector detector{DivergenceOptions()};
   double t = 0.0;
@@ -114,5 +144,7 @@ int main(int argc, char** argv) {
   TimeFigure("BM_MclUpdate/1", "agent.mcl_update_us", "us");
   TimeFigure("BM_MclUpdate/0", "agent.mcl_update_default_us", "us");
   TimeFigure("BM_Divergence", "agent.divergence_us", "us");
+  TimeFigure("BM_MapSwap/0", "agent.map_swap_whole_12m_cells_ms", "ms");
+  TimeFigure("BM_MapSwap/1", "agent.map_swap_delta_12m_cells_ms", "ms");
   return RunBenchmarksAndPrintFigures(argc, argv);
 }

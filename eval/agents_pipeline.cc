@@ -143,7 +143,12 @@ class AgentsPipeline : public Pipeline {
     if (!report->accepted) return;
     ShareCandidates();
     run_.RecordVersion(aggregator_.store().current_map());
-    for (auto& agent : agents_) (void)agent->SetMap(aggregator_.store().current_map(), Version());
+    // The agents' map follows the merge's tiles, as a vehicle's replica does.
+    core::CellWindow changed;
+    for (const core::EncodedTile& tile : report->delta.tiles)
+      changed = core::Union(changed, aggregator_.store().layout().Window(tile.index));
+    for (auto& agent : agents_)
+      (void)agent->UpdateMap(aggregator_.store().current_map(), Version(), changed);
   }
 
   const sim::World& world_;

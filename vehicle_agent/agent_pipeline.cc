@@ -38,6 +38,12 @@ core::Status AgentPipeline::SetMap(const core::OccupancyGrid& map, int32_t versi
   return localizer_.SetMap(map, version);
 }
 
+core::Status AgentPipeline::UpdateMap(const core::OccupancyGrid& map, int32_t version,
+                                      const core::CellWindow& changed) {
+  if (!watch_ || !(watch_->geometry() == map.geometry())) return SetMap(map, version);
+  return localizer_.UpdateMap(map, version, changed);
+}
+
 core::Status AgentPipeline::InitializeAt(const core::Pose2& pose, const Eigen::Matrix3d& cov) {
   return localizer_.InitializeAt(pose, cov);
 }

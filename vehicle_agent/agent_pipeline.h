@@ -66,6 +66,10 @@ class AgentPipeline {
   // The current map (static map plus merged changes) and its version; swapped in without
   // stopping: the particles, the divergence averages and a map being built all carry on.
   core::Status SetMap(const core::OccupancyGrid& map, int32_t version);
+  // A new version that differs from the one in use only inside `changed`: the same result as
+  // SetMap, at a cost that grows with the change rather than the building.
+  core::Status UpdateMap(const core::OccupancyGrid& map, int32_t version,
+                         const core::CellWindow& changed);
   core::Status InitializeAt(const core::Pose2& pose_in_map, const Eigen::Matrix3d& covariance);
   core::Status AddExternalPose(const core::PoseEstimate& pose_in_map);
 

@@ -1,5 +1,6 @@
 #include "core/map/grid_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -28,6 +29,24 @@ Status GridGeometry::Validate() const {
 bool GridGeometry::Contains(const CellWindow& w) const {
   return w.width >= 0 && w.height >= 0 && w.x0 >= 0 && w.y0 >= 0 &&
          int64_t{w.x0} + w.width <= width_ && int64_t{w.y0} + w.height <= height_;
+}
+
+CellWindow GridGeometry::Grown(const CellWindow& w, int cells) const {
+  if (w.width <= 0 || w.height <= 0) return {};
+  const int x0 = std::max(0, w.x0 - cells), y0 = std::max(0, w.y0 - cells);
+  const int x1 = std::min(width_, w.x0 + w.width + cells);
+  const int y1 = std::min(height_, w.y0 + w.height + cells);
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+CellWindow Union(const CellWindow& a, const CellWindow& b) {
+  if (a.width <= 0 || a.height <= 0) return b;
+  if (b.width <= 0 || b.height <= 0) return a;
+  const int x0 = std::min(a.x0, b.x0), y0 = std::min(a.y0, b.y0);
+  const int x1 = std::max(a.x0 + a.width, b.x0 + b.width);
+  const int y1 = std::max(a.y0 + a.height, b.y0 + b.height);
+  return {x0, y0, x1 - x0, y1 - y0};
 }
 
 Eigen::Vector2d GridGeometry::WorldToGrid(const Eigen::Vector2d& world) const {

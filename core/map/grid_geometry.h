@@ -52,6 +52,8 @@ class GridGeometry {
   int64_t num_cells() const { return int64_t{width_} * height_; }
   const Pose2& origin() const { return origin_; }
   CellWindow full_window() const { return {0, 0, width_, height_}; }
+  // `w` grown by `cells` on every side and clipped to the grid (empty if `w` is empty).
+  CellWindow Grown(const CellWindow& w, int cells) const;
 
   bool Contains(const CellIndex& c) const {
     return c.x >= 0 && c.y >= 0 && c.x < width_ && c.y < height_;
@@ -76,6 +78,9 @@ class GridGeometry {
   int height_ = 0;
   Pose2 origin_;
 };
+
+// The smallest window holding both (either may be empty).
+CellWindow Union(const CellWindow& a, const CellWindow& b);
 
 // A length in cells of `resolution_m`, to a millionth of a cell, so that options in metres give
 // the whole cells they mean (0.3 m at 0.05 m are 6 cells, not 5.999...).

@@ -17,6 +17,15 @@ bool MapReplica::NeedsKeyframe() const {
   return !deltas_.empty() && deltas_.begin()->first > version_;
 }
 
+CellWindow MapReplica::TakeChanged() {
+  const CellWindow changed = !map_            ? CellWindow{}
+                             : whole_changed_ ? map_->geometry().full_window()
+                                              : changed_;
+  changed_ = {};
+  whole_changed_ = false;
+  return changed;
+}
+
 Status MapReplica::Seed(OccupancyGrid grid, int32_t version, int32_t tile_size_cells) {
   FLEETMAP_RETURN_IF_ERROR(grid.geometry().Validate().WithContext("seed map"));
   TileOptions options;
@@ -26,6 +35,7 @@ Status MapReplica::Seed(OccupancyGrid grid, int32_t version, int32_t tile_size_c
   map_ = std::move(grid);
   version_ = version;
   tile_size_cells_ = tile_size_cells;
+  whole_changed_ = true;
   keyframe_header_.reset();
   keyframe_tiles_.clear();
   deltas_.erase(deltas_.begin(), deltas_.lower_bound(version_));
@@ -65,6 +75,7 @@ Result<bool> MapReplica::AddKeyframeTile(const KeyframeTile& tile) {
   map_ = std::move(grid);
   version_ = tile.version;
   tile_size_cells_ = tile.tile_size_cells;
+  whole_changed_ = true;
   deltas_.erase(deltas_.begin(), deltas_.lower_bound(version_));  // older than the keyframe
   ApplyReadyDeltas();
   return map_.has_value();  // a corrupt buffered delta drops the map it completed
@@ -102,6 +113,8 @@ void MapReplica::ApplyReadyDeltas() {
       version_ = -1;
       return;
     }
+    const TileLayout layout(map_->geometry(), tile_size_cells_);
+    for (const EncodedTile& t : tiles) changed_ = Union(changed_, layout.Window(t.index));
     ++version_;
   }
 }

@@ -49,6 +49,10 @@ class MapReplica {
   int32_t version() const { return version_; }
   // No map yet, or deltas are waiting for a version that was missed.
   bool NeedsKeyframe() const;
+  // Where the map changed since the last call: the tiles of the deltas applied since, or the
+  // whole grid after a seed or a keyframe (every cell may differ from a map held before).
+  // Empty when nothing changed.
+  CellWindow TakeChanged();
 
  private:
   struct PendingVersion {
@@ -62,6 +66,8 @@ class MapReplica {
   int32_t version_ = -1;
   int32_t tile_size_cells_ = 64;
   std::map<int32_t, PendingVersion> deltas_;  // by base version
+  CellWindow changed_;                        // the tiles of the deltas applied since TakeChanged
+  bool whole_changed_ = false;                // a seed or a keyframe since TakeChanged
   std::optional<KeyframeTile> keyframe_header_;
   std::map<int32_t, EncodedTile> keyframe_tiles_;
 };

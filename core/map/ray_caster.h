@@ -22,10 +22,16 @@ struct RayHit {
 
 class RayCaster {
  public:
-  explicit RayCaster(const GridGeometry& geometry);
+  // `max_clearance_m` > 0 caps the distance field there (a beam then jumps at most that far at
+  // once), so that UpdateSolid recomputes only the cells near a change; 0: uncapped.
+  explicit RayCaster(const GridGeometry& geometry, double max_clearance_m = 0.0);
 
   // Sets the solid cells (row-major, non-zero blocks beams) and rebuilds the distance field.
   void SetSolid(std::vector<uint8_t> solid);
+  // Sets the cells of `changed` (inside the grid) to `solid_in_window` (row-major in the
+  // window): with a capped field only the cells within the cap of the window are recomputed, to
+  // the values SetSolid would give; uncapped, the whole field.
+  void UpdateSolid(const CellWindow& changed, const std::vector<uint8_t>& solid_in_window);
   const std::vector<uint8_t>& solid() const { return solid_; }
   const GridGeometry& geometry() const { return geometry_; }
 
@@ -34,7 +40,12 @@ class RayCaster {
   RayHit Cast(const Eigen::Vector2d& origin, double angle_rad, double max_range_m) const;
 
  private:
+  // The distance field of the cells of `out`, from the solid cells within reach of them.
+  void Recompute(const CellWindow& out);
+
   GridGeometry geometry_;
+  float max_clearance_cells_;  // +inf when uncapped
+  int reach_cells_;            // how far a change of a solid cell moves the capped field
   std::vector<uint8_t> solid_;
   std::vector<float> clearance_cells_;  // distance to the nearest solid cell centre, cells
 };

@@ -25,6 +25,10 @@ double ShortDensity(double z, double expected, double lambda) {
   return lambda * std::exp(-lambda * z) / (1.0 - std::exp(-lambda * expected));
 }
 
+// The longest jump of a beam through free space: a longer one saves few steps, and a cap lets a
+// new map version recompute the caster's distance field only near its changes.
+constexpr double kMaxJumpM = 2.0;
+
 std::vector<uint8_t> OccupiedCells(const core::OccupancyGrid& map) {
   const core::TriStateClassifier classify;
   std::vector<uint8_t> solid(map.cells().size());
@@ -47,8 +51,22 @@ class BeamModel final : public ScanLikelihood {
   void SetMap(const core::OccupancyGrid& map) override {
     caster_.reset();
     if (map.geometry().num_cells() == 0) return;
-    caster_.emplace(map.geometry());
+    caster_.emplace(map.geometry(), kMaxJumpM);
     caster_->SetSolid(OccupiedCells(map));
+  }
+
+  void UpdateMap(const core::OccupancyGrid& map, const core::CellWindow& changed) override {
+    if (!caster_ || !(caster_->geometry() == map.geometry())) return SetMap(map);
+    if (!map.geometry().Contains(changed)) return SetMap(map);
+    const core::TriStateClassifier classify;
+    std::vector<uint8_t> solid(static_cast<size_t>(changed.num_cells()));
+    const int w = map.geometry().width();
+    for (int y = 0; y < changed.height; ++y)
+      for (int x = 0; x < changed.width; ++x)
+        solid[size_t(y) * changed.width + x] =
+            classify(map.cells()[size_t(y + changed.y0) * w + (x + changed.x0)]) ==
+            core::CellState::kOccupied;
+    caster_->UpdateSolid(changed, solid);
   }
 
   ScanScore Score(const core::LaserScan& scan, const core::Pose2& scanner_in_map) const override {

@@ -1,5 +1,6 @@
 #include "vehicle_agent/localization/likelihood_field.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -8,41 +9,53 @@
 namespace fleetmap::vehicle_agent {
 namespace {
 
+// The occupied cells of a window and, among them, the surfaces a beam can end on (occupied,
+// with a 4-neighbour on the grid that is not), row-major in the window.
 struct Surfaces {
-  std::vector<uint8_t> occupied;  // per cell
-  std::vector<uint8_t> surface;   // occupied with a 4-neighbour that is not
+  std::vector<uint8_t> occupied;
+  std::vector<uint8_t> surface;
 };
 
-// The occupied cells and, among them, the surfaces a beam can end on.
-Surfaces FindSurfaces(const core::OccupancyGrid& map) {
+Surfaces FindSurfaces(const core::OccupancyGrid& map, const core::CellWindow& window) {
   const core::TriStateClassifier classify;
+  const core::GridGeometry& g = map.geometry();
+  const int w = g.width(), h = g.height();
+  // A surface depends on the cells around it: classify the window and a border of one.
+  const core::CellWindow around = g.Grown(window, 1);
+  std::vector<uint8_t> o(static_cast<size_t>(around.num_cells()));
+  for (int y = 0; y < around.height; ++y)
+    for (int x = 0; x < around.width; ++x)
+      o[size_t(y) * around.width + x] =
+          classify(map.cells()[size_t(y + around.y0) * w + (x + around.x0)]) ==
+          core::CellState::kOccupied;
+  const auto occupied = [&](int x, int y) {
+    return o[size_t(y - around.y0) * around.width + (x - around.x0)] != 0;
+  };
   Surfaces s;
-  s.occupied.resize(map.cells().size());
-  for (size_t i = 0; i < s.occupied.size(); ++i)
-    s.occupied[i] = classify(map.cells()[i]) == core::CellState::kOccupied;
+  s.occupied.assign(static_cast<size_t>(window.num_cells()), 0);
   s.surface.assign(s.occupied.size(), 0);
-  const std::vector<uint8_t>& o = s.occupied;
-  const int w = map.geometry().width(), h = map.geometry().height();
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const size_t i = size_t(y) * w + x;
-      s.surface[i] = o[i] && ((x > 0 && !o[i - 1]) || (x + 1 < w && !o[i + 1]) ||
-                              (y > 0 && !o[i - w]) || (y + 1 < h && !o[i + w]));
+  for (int y = window.y0; y < window.y0 + window.height; ++y) {
+    for (int x = window.x0; x < window.x0 + window.width; ++x) {
+      const size_t i = size_t(y - window.y0) * window.width + (x - window.x0);
+      s.occupied[i] = occupied(x, y);
+      s.surface[i] =
+          s.occupied[i] && ((x > 0 && !occupied(x - 1, y)) || (x + 1 < w && !occupied(x + 1, y)) ||
+                            (y > 0 && !occupied(x, y - 1)) || (y + 1 < h && !occupied(x, y + 1)));
     }
   }
   return s;
 }
 
-// Distance from every cell centre to the nearest surface cell centre, in cells (very far
-// everywhere should OpenCV refuse).
-std::vector<float> DistanceToSurface(const core::GridGeometry& g,
+// Distance from every cell centre of a window to the nearest surface cell centre in it, in
+// cells (very far everywhere should OpenCV refuse).
+std::vector<float> DistanceToSurface(const core::CellWindow& window,
                                      const std::vector<uint8_t>& surface) {
   // distanceTransform measures the distance to the nearest zero pixel: zero = surface.
-  cv::Mat not_surface(g.height(), g.width(), CV_8UC1);
+  cv::Mat not_surface(window.height, window.width, CV_8UC1);
   for (size_t i = 0; i < surface.size(); ++i) not_surface.data[i] = surface[i] ? 0 : 255;
   std::vector<float> distance(surface.size(), 1e9f);
   try {
-    cv::Mat out(g.height(), g.width(), CV_32FC1, distance.data());
+    cv::Mat out(window.height, window.width, CV_32FC1, distance.data());
     cv::distanceTransform(not_surface, out, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   } catch (const cv::Exception&) {
     distance.assign(surface.size(), 1e9f);
@@ -88,21 +101,49 @@ void LikelihoodField::SetMap(const core::OccupancyGrid& map) {
   distance_m_.clear();
   log_p_.clear();
   if (geometry_.num_cells() == 0) return;
-  const Surfaces surfaces = FindSurfaces(map);
-  distance_m_ = DistanceToSurface(geometry_, surfaces.surface);
+  distance_m_.resize(static_cast<size_t>(geometry_.num_cells()));
   log_p_.resize(distance_m_.size());
+  Recompute(map, geometry_.full_window());
+}
+
+void LikelihoodField::UpdateMap(const core::OccupancyGrid& map, const core::CellWindow& changed) {
+  if (!has_map() || !(map.geometry() == geometry_)) return SetMap(map);
+  // A cell further than the reach from every change keeps its value: the surfaces that
+  // changed lie within a cell of the window, and from beyond the reach they are at the cap.
+  const core::CellWindow affected = geometry_.Grown(changed, ReachCells());
+  if (affected.num_cells() > 0) Recompute(map, affected);
+}
+
+int LikelihoodField::ReachCells() const {
+  // A free cell's distance is its centre's to the nearest surface centre less half a cell:
+  // beyond max_distance_m / resolution + 0.5 cells it is capped. One cell more for the
+  // surfaces' own neighbourhood.
+  return static_cast<int>(std::ceil(options_.max_distance_m / geometry_.resolution_m() + 0.5)) + 1;
+}
+
+void LikelihoodField::Recompute(const core::OccupancyGrid& map, const core::CellWindow& out) {
+  // The nearest surface of a cell of `out` whose distance is below the cap lies within the
+  // reach of it: the distance transform of that larger window gives the same values as the
+  // whole map's.
+  const core::CellWindow source = geometry_.Grown(out, ReachCells());
+  const Surfaces surfaces = FindSurfaces(map, source);
+  const std::vector<float> distance = DistanceToSurface(source, surfaces.surface);
   const double res = geometry_.resolution_m();
-  for (size_t i = 0; i < distance_m_.size(); ++i) {
-    // The surface is the face between a surface cell and its free neighbour, half a cell
-    // from either centre: both cells next to a face are 0.5 cells from it, on either side.
-    const double cells =
-        surfaces.occupied[i] ? distance_m_[i] + 0.5 : std::max(0.0f, distance_m_[i] - 0.5f);
-    const double d = std::min(cells * res, options_.max_distance_m);
-    distance_m_[i] = static_cast<float>(d);
-    // Most cells of a large map lie beyond the cap: their value is the one computed once (an
-    // exp and a log per cell were a tenth of a fine-resolution world's run).
-    log_p_[i] =
-        static_cast<float>(d >= options_.max_distance_m ? log_p_far_ : LogProbabilityOfDistance(d));
+  for (int y = out.y0; y < out.y0 + out.height; ++y) {
+    for (int x = out.x0; x < out.x0 + out.width; ++x) {
+      const size_t local = size_t(y - source.y0) * source.width + (x - source.x0);
+      const size_t i = size_t(y) * geometry_.width() + x;
+      // The surface is the face between a surface cell and its free neighbour, half a cell
+      // from either centre: both cells next to a face are 0.5 cells from it, on either side.
+      const double cells =
+          surfaces.occupied[local] ? distance[local] + 0.5 : std::max(0.0f, distance[local] - 0.5f);
+      const double d = std::min(cells * res, options_.max_distance_m);
+      distance_m_[i] = static_cast<float>(d);
+      // Most cells of a large map lie beyond the cap: their value is the one computed once (an
+      // exp and a log per cell were a tenth of a fine-resolution world's run).
+      log_p_[i] = static_cast<float>(d >= options_.max_distance_m ? log_p_far_
+                                                                  : LogProbabilityOfDistance(d));
+    }
   }
 }
 

@@ -42,6 +42,10 @@ class LikelihoodField final : public ScanLikelihood {
   explicit LikelihoodField(const LikelihoodFieldOptions& options);
 
   void SetMap(const core::OccupancyGrid& map) override;
+  // The field of `map` from the cells within the distance cap of `changed` only (SetMap when
+  // the geometry differs or there is no map yet): the same values as SetMap, at a cost that
+  // grows with the change, not the building.
+  void UpdateMap(const core::OccupancyGrid& map, const core::CellWindow& changed) override;
   ScanScore Score(const core::LaserScan& scan, const core::Pose2& scanner_in_map) const override;
 
   bool has_map() const { return !log_p_.empty(); }
@@ -57,6 +61,9 @@ class LikelihoodField final : public ScanLikelihood {
   double LogProbabilityOfDistance(double distance_m) const;
 
  private:
+  int ReachCells() const;  // how far a surface's change moves the field, cells
+  // Distances and log p of the cells of `out` from the map's surfaces.
+  void Recompute(const core::OccupancyGrid& map, const core::CellWindow& out);
   std::optional<size_t> CellOf(const Eigen::Vector2d& point_in_map) const;  // row-major index
 
   const LikelihoodFieldOptions options_;

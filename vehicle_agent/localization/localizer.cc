@@ -48,6 +48,24 @@ core::Status Localizer::SetMap(const core::OccupancyGrid& map, int32_t version) 
       DiagonalCovariance(options_.initial_sigma_xy_m, options_.initial_sigma_theta_rad));
 }
 
+core::Status Localizer::UpdateMap(const core::OccupancyGrid& map, int32_t version,
+                                  const core::CellWindow& changed) {
+  if (!has_map_ || !(map.geometry() == map_.geometry()) ||
+      static_cast<int64_t>(map.cells().size()) != map.geometry().num_cells())
+    return SetMap(map, version);
+  field_.UpdateMap(map, changed);
+  if (beam_model_) beam_model_->UpdateMap(map, changed);
+  // The window's rows only: a copy of the whole grid would be most of the cost on a large map.
+  const core::CellWindow w = map.geometry().Grown(changed, 0);
+  const int width = map.geometry().width();
+  for (int y = w.y0; y < w.y0 + w.height; ++y) {
+    const size_t row = size_t(y) * width + w.x0;
+    std::copy_n(map.cells().begin() + row, w.width, map_.mutable_cells().begin() + row);
+  }
+  map_version_ = version;
+  return core::OkStatus();
+}
+
 core::Status Localizer::InitializeAt(const core::Pose2& pose_in_map,
                                      const Eigen::Matrix3d& covariance) {
   if (!pose_in_map.IsFinite()) return core::InvalidArgument("initial pose is not finite");

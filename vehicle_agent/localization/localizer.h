@@ -83,6 +83,12 @@ class Localizer {
   // Uses `map` from now on; the particles stay where they are. The first map also initialises
   // the filter (options.initial_pose_mode). An empty map is refused and the old one kept.
   core::Status SetMap(const core::OccupancyGrid& map, int32_t version);
+  // The same for a version that differs from the map in use only inside `changed` (a
+  // merge's tiles): the scan models recompute only what that can change, so a new version
+  // does not stall the scan loop for the whole building. SetMap when there is no map yet or
+  // the geometry differs.
+  core::Status UpdateMap(const core::OccupancyGrid& map, int32_t version,
+                         const core::CellWindow& changed);
   // Restarts the particles around a pose (an operator's or configured initial pose).
   core::Status InitializeAt(const core::Pose2& pose_in_map, const Eigen::Matrix3d& covariance);
   // Global localization: the next scan is searched for over the whole map and the particles

@@ -45,6 +45,12 @@ class ScanLikelihood {
   // Replaces the map (a new current-map version). An empty grid means "no map": every
   // score is then NaN.
   virtual void SetMap(const core::OccupancyGrid& map) = 0;
+  // A new version of the map in use that differs from it only inside `changed` (a merge's
+  // tiles). Models that can update a part override this; the rest start afresh.
+  virtual void UpdateMap(const core::OccupancyGrid& map, const core::CellWindow& changed) {
+    (void)changed;
+    SetMap(map);
+  }
 
   // Scores `scan` (its own frame) seen from `scanner_in_map`. A scan that fails
   // LaserScan::Validate() or a non-finite pose scores NaN with beams_used = 0.

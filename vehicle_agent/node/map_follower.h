@@ -54,12 +54,13 @@ class MapFollower {
 
   // have_version for a MAP_REQUEST to send now (-1: no map), or nothing. Counts the request.
   // Drops the replica first when the heartbeat says the aggregator's versions went back.
-  // Drops the replica first when the heartbeat says the aggregator's versions went back.
   std::optional<int32_t> RequestDue(double now_s);
 
   bool has_map() const { return replica_.has_map(); }
   const core::OccupancyGrid& map() const { return replica_.map(); }
   int32_t version() const { return replica_.version(); }
+  // Where the map changed since the last call (core::MapReplica::TakeChanged).
+  core::CellWindow TakeChanged() { return replica_.TakeChanged(); }
   const MapFollowerCounters& counters() const { return counters_; }
 
  private:

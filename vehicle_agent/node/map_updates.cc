@@ -43,7 +43,13 @@ bool MapUpdates::Apply(AgentPipeline& pipeline) {
   // Due means a tile completed a version (or the static map came in), not a version number
   // above the one in use: after an aggregator restart a new map may carry a number held before.
   if (!follower_.has_map()) return false;
-  const core::Status s = pipeline.SetMap(follower_.map(), follower_.version());
+  // The vehicle's scan models follow the delta's tiles rather than the whole map: a new
+  // version of a large building must not stall the scan loop.
+  const core::CellWindow changed = follower_.TakeChanged();
+  const core::Status s = in_use_ && !whole_next_
+                             ? pipeline.UpdateMap(follower_.map(), follower_.version(), changed)
+                             : pipeline.SetMap(follower_.map(), follower_.version());
+  whole_next_ = !s.ok();  // what changed is lost with a refused version
   if (!s.ok()) {
     ++counters_->map_swaps_failed;
     log_->Once("map swap",

@@ -47,6 +47,7 @@ class MapUpdates {
   MapFollower follower_;
   bool due_ = false;  // the follower has a version the pipeline does not
   bool in_use_ = false;
+  bool whole_next_ = false;  // the last version was refused: the next starts afresh
   int32_t version_in_use_ = -1;
 };
 

@@ -59,6 +59,29 @@ TEST(MapReplicaTest, KeyframeThenDeltasInOrder) {
   EXPECT_FALSE(replica.NeedsKeyframe());
 }
 
+// What a vehicle's scan models must recompute: everything after a keyframe, the tiles of the
+// deltas applied since (pallets at x 20 and 100 of a 150 x 100 grid cut into 64-cell tiles:
+// tiles (0, 0) and (1, 0)), nothing when nothing changed.
+TEST(MapReplicaTest, SaysWhereTheMapChangedSinceItWasLastAsked) {
+  const OccupancyGrid v1 = Hall(), v2 = WithPallet(v1, 20), v3 = WithPallet(v2, 100);
+  MapReplica replica;
+  EXPECT_EQ(replica.TakeChanged(), CellWindow{}) << "no map";
+  for (const auto& t : Keyframe(v1, 1)) ASSERT_TRUE(replica.AddKeyframeTile(t).ok());
+  EXPECT_EQ(replica.TakeChanged(), v1.geometry().full_window());
+  EXPECT_EQ(replica.TakeChanged(), CellWindow{});
+  for (const auto& t : Delta(v1, v2, 1)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.TakeChanged(), (CellWindow{0, 0, 64, 64}));
+  for (const auto& t : Delta(v2, v1, 2)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  for (const auto& t : Delta(v1, v3, 3)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  EXPECT_EQ(replica.version(), 4);
+  EXPECT_EQ(replica.TakeChanged(), (CellWindow{0, 0, 128, 64})) << "both versions' tiles";
+  ASSERT_TRUE(replica.AddDeltaTile({4, 0, 0, {}, {}}).ok());
+  EXPECT_EQ(replica.version(), 5);
+  EXPECT_EQ(replica.TakeChanged(), CellWindow{});
+  ASSERT_TRUE(replica.Seed(v3, 9).ok());
+  EXPECT_EQ(replica.TakeChanged(), v3.geometry().full_window());
+}
+
 TEST(MapReplicaTest, OutOfOrderDeltasWaitAndAGapAsksForAKeyframe) {
   const OccupancyGrid v1 = Hall(), v2 = WithPallet(v1, 20), v3 = WithPallet(v2, 100);
   MapReplica replica;

@@ -56,6 +56,59 @@ TEST(RayCasterTest, MatchesBruteForceMarchingOnRandomRays) {
   }
 }
 
+// A caster whose jumps are capped finds the same cells as one whose are not, and one updated
+// around a change casts exactly as one built on the changed cells.
+TEST(RayCasterTest, ACappedFieldUpdatedAroundAChangeCastsAsOneBuiltAfresh) {
+  auto before = Room();
+  for (int x = 80; x < 90; ++x)
+    for (int y = 40; y < 45; ++y) before.SetState({x, y}, CellState::kOccupied);
+  auto after = before;
+  for (int x = 80; x < 90; ++x)
+    for (int y = 40; y < 45; ++y) after.SetState({x, y}, CellState::kFree);
+  for (int x = 150; x < 160; ++x)
+    for (int y = 1; y < 10; ++y) after.SetState({x, y}, CellState::kOccupied);
+  RayCaster updated(before.geometry(), 0.5), fresh(after.geometry(), 0.5),
+      uncapped(after.geometry());
+  updated.SetSolid(Solid(before));
+  const CellWindow changed{80, 1, 80, 44};
+  std::vector<uint8_t> window_cells;
+  for (int y = changed.y0; y < changed.y0 + changed.height; ++y)
+    for (int x = changed.x0; x < changed.x0 + changed.width; ++x)
+      window_cells.push_back(after.cells()[after.geometry().Index({x, y})] > 0);
+  updated.UpdateSolid(changed, window_cells);
+  fresh.SetSolid(Solid(after));
+  uncapped.SetSolid(Solid(after));
+  int rays_changed = 0;
+  RayCaster old(before.geometry(), 0.5);
+  old.SetSolid(Solid(before));
+  for (const Eigen::Vector2d& origin : {Eigen::Vector2d(2.0, 1.5), Eigen::Vector2d(8.0, 4.0)}) {
+    for (int k = 0; k < 360; k += 3) {
+      const double a = k * M_PI / 180.0;
+      const RayHit u = updated.Cast(origin, a, 30.0), f = fresh.Cast(origin, a, 30.0);
+      ASSERT_EQ(u.range_m, f.range_m) << k;
+      ASSERT_EQ(u.cell, f.cell) << k;
+      const RayHit w = uncapped.Cast(origin, a, 30.0);
+      ASSERT_EQ(f.cell, w.cell) << k;
+      ASSERT_NEAR(f.range_m, w.range_m, 1e-6) << k;
+      rays_changed += old.Cast(origin, a, 30.0).cell != f.cell;
+    }
+  }
+  EXPECT_GE(rays_changed, 5) << "the change hides from every ray: the test tests nothing";
+}
+
+// Straight down from a point on a cell boundary: cos(270 deg) is -1.8e-16, which in floating
+// point never moves the ray off the boundary; it must still reach the wall (and return).
+TEST(RayCasterTest, ARayAlongACellBoundaryReachesTheWall) {
+  const auto room = Room();
+  for (double cap_m : {0.0, 0.5}) {
+    RayCaster caster(room.geometry(), cap_m);
+    caster.SetSolid(Solid(room));
+    const RayHit hit = caster.Cast({2.0, 1.5}, 1.5 * M_PI, 30.0);
+    EXPECT_NEAR(hit.range_m, 1.45, 1e-6) << cap_m;
+    EXPECT_EQ(hit.cell, (CellIndex{40, 0})) << cap_m;
+  }
+}
+
 TEST(RayCasterTest, NothingWithinRangeOrOutsideTheGrid) {
   const auto room = Room();
   RayCaster caster(room.geometry());

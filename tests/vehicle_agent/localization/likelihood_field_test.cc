@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "tests/vehicle_agent/test_grids.h"
 #include "vehicle_agent/localization/scan_endpoints.h"
@@ -87,6 +89,54 @@ TEST(LikelihoodFieldTest, SkipsNoReturnsAndCountsBadRanges) {
   const std::vector<Eigen::Vector2f> far = {{1e30f, -1e30f}, {NAN, 0.0f}};
   EXPECT_TRUE(std::isfinite(field.LogLikelihood(far, pose)));
   EXPECT_TRUE(std::isfinite(field.LogLikelihoodAt({1e300, 1e300})));
+}
+
+// Every cell's distance and log p, at its centre.
+std::vector<std::pair<float, float>> FieldValues(const LikelihoodField& field,
+                                                 const core::GridGeometry& g) {
+  std::vector<std::pair<float, float>> values;
+  for (int y = 0; y < g.height(); ++y)
+    for (int x = 0; x < g.width(); ++x) {
+      const Eigen::Vector2d c = g.CellCenter({x, y});
+      values.emplace_back(static_cast<float>(field.DistanceAt(c)),
+                          static_cast<float>(field.LogLikelihoodAt(c)));
+    }
+  return values;
+}
+
+// A new map version updated around its change gives the field of the whole map rebuilt, cell
+// for cell: a pallet taken away, one added beside a wall (the wall's surface cells outside the
+// changed window change too) and one at the grid's corner.
+TEST(LikelihoodFieldTest, AnUpdateAroundTheChangeGivesTheWholeMapsField) {
+  for (double max_distance_m : {0.4, 2.0}) {
+    LikelihoodFieldOptions o;
+    o.max_distance_m = max_distance_m;
+    core::OccupancyGrid before = Room(2, core::Pose2(1.0, -2.0, 0.3));
+    test_grids::AddBox(before, 3.0, 2.0, 4.2, 2.8);
+    core::OccupancyGrid after = before;
+    for (int y = 40; y < 56; ++y)
+      for (int x = 60; x < 84; ++x) after.SetState({x, y}, core::CellState::kFree);
+    for (int y = 2; y < 20; ++y)
+      for (int x = 150; x < 170; ++x) after.SetState({x, y}, core::CellState::kOccupied);
+    after.SetState({199, 119}, core::CellState::kFree);
+    LikelihoodField updated(o), rebuilt(o);
+    updated.SetMap(before);
+    const auto values_before = FieldValues(updated, before.geometry());
+    updated.UpdateMap(after, {60, 2, 140, 118});
+    rebuilt.SetMap(after);
+    const auto want = FieldValues(rebuilt, after.geometry());
+    ASSERT_NE(values_before, want) << "the change moves nothing: the test tests nothing";
+    EXPECT_EQ(FieldValues(updated, after.geometry()), want) << max_distance_m;
+  }
+}
+
+TEST(LikelihoodFieldTest, AnUpdateOfAnotherGeometryRebuilds) {
+  LikelihoodField updated{LikelihoodFieldOptions()}, rebuilt{LikelihoodFieldOptions()};
+  updated.SetMap(Room(2));
+  const core::OccupancyGrid moved = Room(3, core::Pose2(0.5, 0.0, 0.0));
+  updated.UpdateMap(moved, {0, 0, 1, 1});
+  rebuilt.SetMap(moved);
+  EXPECT_EQ(FieldValues(updated, moved.geometry()), FieldValues(rebuilt, moved.geometry()));
 }
 
 TEST(LikelihoodFieldTest, ValidateNamesTheBadField) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/vehicle_agent/agent_sim_util.h"
 
 namespace fleetmap::vehicle_agent {
@@ -13,6 +15,7 @@ using sim_testing::Max;
 using sim_testing::Median;
 using sim_testing::RunOptions;
 using sim_testing::RunVehicle;
+using sim_testing::ScanRecord;
 using sim_testing::SimRun;
 using sim_testing::TranslationError;
 
@@ -92,6 +95,38 @@ TEST(LocalizerTest, SwapsToANewMapVersionWithoutLosingTheParticles) {
   EXPECT_LT(Median(after), 0.05);
   EXPECT_LT(Max(after), 0.15);
   EXPECT_LT(Median(Errors(run, 45.0, 1e9, HeadingErrorRad)), 1.0 * kDeg);
+}
+
+// A new version taken in around its change (UpdateMap, the pallet's cells) tracks and scores
+// every later scan exactly as the whole map taken in afresh (SetMap).
+TEST(LocalizerTest, AVersionUpdatedAroundItsChangeGivesWhatTheWholeMapGives) {
+  const sim::World world = sim_testing::MakeWorld(kPalletScenario);
+  const core::OccupancyGrid with_pallet = world.TrueMapAt(40.0);
+  const core::GridGeometry& g = with_pallet.geometry();
+  const core::CellIndex a = g.WorldToCell({27.3, 4.5}), b = g.WorldToCell({28.7, 5.5});
+  const core::CellWindow pallet{a.x, a.y, b.x - a.x + 1, b.y - a.y + 1};
+  SimRun runs[2];
+  for (bool update : {false, true}) {
+    RunOptions options;
+    options.end_s = 60.0;
+    options.before_scan = [&](double t_s, Localizer& localizer) {
+      if (t_s < 45.0 || localizer.map_version() == 2) return;
+      ASSERT_TRUE(
+          (update ? localizer.UpdateMap(with_pallet, 2, pallet) : localizer.SetMap(with_pallet, 2))
+              .ok());
+    };
+    runs[update] = RunVehicle(world, options);
+  }
+  ASSERT_EQ(runs[0].scans.size(), runs[1].scans.size());
+  ASSERT_EQ(runs[1].scans.back().estimate.map_version, 2);
+  for (size_t i = 0; i < runs[0].scans.size(); ++i) {
+    const ScanRecord &whole = runs[0].scans[i], &updated = runs[1].scans[i];
+    ASSERT_EQ(whole.estimate.pose_in_map.x_m, updated.estimate.pose_in_map.x_m) << whole.stamp_s;
+    ASSERT_EQ(whole.estimate.pose_in_map.theta_rad, updated.estimate.pose_in_map.theta_rad);
+    ASSERT_TRUE(whole.stats.w_avg == updated.stats.w_avg ||
+                (std::isnan(whole.stats.w_avg) && std::isnan(updated.stats.w_avg)))
+        << whole.stamp_s;
+  }
 }
 
 // A vehicle that localizes itself reports noisy poses (3 cm, 0.6 deg) at 10 Hz.
