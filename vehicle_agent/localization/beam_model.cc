@@ -29,11 +29,16 @@ double ShortDensity(double z, double expected, double lambda) {
 // new map version recompute the caster's distance field only near its changes.
 constexpr double kMaxJumpM = 2.0;
 
-std::vector<uint8_t> OccupiedCells(const core::OccupancyGrid& map) {
+// 1 for each occupied cell of `window` (inside the map's grid), row-major in the window.
+std::vector<uint8_t> OccupiedCells(const core::OccupancyGrid& map, const core::CellWindow& window) {
   const core::TriStateClassifier classify;
-  std::vector<uint8_t> solid(map.cells().size());
-  for (size_t i = 0; i < solid.size(); ++i)
-    solid[i] = classify(map.cells()[i]) == core::CellState::kOccupied;
+  std::vector<uint8_t> solid(static_cast<size_t>(window.num_cells()));
+  const int w = map.geometry().width();
+  for (int y = 0; y < window.height; ++y)
+    for (int x = 0; x < window.width; ++x)
+      solid[size_t(y) * window.width + x] =
+          classify(map.cells()[size_t(y + window.y0) * w + (x + window.x0)]) ==
+          core::CellState::kOccupied;
   return solid;
 }
 
@@ -52,21 +57,13 @@ class BeamModel final : public ScanLikelihood {
     caster_.reset();
     if (map.geometry().num_cells() == 0) return;
     caster_.emplace(map.geometry(), kMaxJumpM);
-    caster_->SetSolid(OccupiedCells(map));
+    caster_->SetSolid(OccupiedCells(map, map.geometry().full_window()));
   }
 
   void UpdateMap(const core::OccupancyGrid& map, const core::CellWindow& changed) override {
     if (!caster_ || !(caster_->geometry() == map.geometry())) return SetMap(map);
     if (!map.geometry().Contains(changed)) return SetMap(map);
-    const core::TriStateClassifier classify;
-    std::vector<uint8_t> solid(static_cast<size_t>(changed.num_cells()));
-    const int w = map.geometry().width();
-    for (int y = 0; y < changed.height; ++y)
-      for (int x = 0; x < changed.width; ++x)
-        solid[size_t(y) * changed.width + x] =
-            classify(map.cells()[size_t(y + changed.y0) * w + (x + changed.x0)]) ==
-            core::CellState::kOccupied;
-    caster_->UpdateSolid(changed, solid);
+    caster_->UpdateSolid(changed, OccupiedCells(map, changed));
   }
 
   ScanScore Score(const core::LaserScan& scan, const core::Pose2& scanner_in_map) const override {
