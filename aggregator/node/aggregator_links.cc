@@ -12,14 +12,16 @@ double WallClockS() {
 }
 
 core::Result<std::unique_ptr<AggregatorLinks>> AggregatorLinks::Open(
-    const std::string& uplink_url, const std::string& downlink_url) {
+    const std::string& uplink_url, const std::string& downlink_url,
+    const core::PacerOptions& downlink) {
+  FLEETMAP_RETURN_IF_ERROR(downlink.Validate().WithContext("downlink"));
   // Never one instance for both, even on one URL: the uplink's TEMPMAP_.* would match our own
   // TEMPMAP_ACK.
   auto groups =
       edge::LcmGroups::Open({{Link::kUplink, uplink_url}, {Link::kDownlink, downlink_url}},
                             /*share_same_url=*/false);
   if (!groups.ok()) return groups.status();
-  return std::unique_ptr<AggregatorLinks>(new AggregatorLinks(std::move(groups).value()));
+  return std::unique_ptr<AggregatorLinks>(new AggregatorLinks(std::move(groups).value(), downlink));
 }
 
 void AggregatorLinks::Bind(AggregatorNode* node) {
@@ -43,22 +45,29 @@ int AggregatorLinks::Poll(int timeout_ms) {
 }
 
 size_t AggregatorLinks::Flush() {
-  int allowed = pacer_.Allowed(WallClockS());
-  int sent = 0;
-  for (; allowed > 0 && !queue_.empty(); --allowed, ++sent) {
+  const double now_s = WallClockS();
+  while (!queue_.empty() && pacer_.MaySend(now_s)) {
     const Outgoing& m = queue_.front();
     groups_->Publish(m.link, m.channel, m.bytes);
+    pacer_.Sent(1, m.bytes.size());
+    queued_bytes_ -= m.bytes.size();
     queue_.pop_front();
   }
-  pacer_.Sent(sent);
   return queue_.size();
+}
+
+size_t AggregatorLinks::RoomBytes(Link) const {
+  if (!queue_.empty()) return 0;
+  return static_cast<size_t>(std::min(pacer_.BytesAllowed(WallClockS()), 1e15));
 }
 
 bool AggregatorLinks::Publish(Link link, const std::string& channel,
                               const std::vector<uint8_t>& bytes) {
-  constexpr size_t kMaxQueued = 20000;  // ~ a hundred keyframes of a large site
-  if (queue_.size() >= kMaxQueued) return false;
+  // Without a byte budget, as many as a hundred keyframes of a large site.
+  const double max_bytes = downlink_.bytes_per_s > 0.0 ? downlink_.bytes_per_s * kMaxQueuedS : 64e6;
+  if (static_cast<double>(queued_bytes_ + bytes.size()) > max_bytes) return false;
   queue_.push_back({link, channel, bytes});
+  queued_bytes_ += bytes.size();
   Flush();
   return true;
 }

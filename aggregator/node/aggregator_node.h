@@ -12,22 +12,23 @@
 //       the new version. A failed journal write (a full disk) acknowledges nothing: the
 //       vehicle resends and the merge is tried again. A map already merged or rejected is
 //       answered DUPLICATE and never merged twice, also after a restart.
-//   MAP_REQUEST  the deltas since the vehicle's version when all are retained, otherwise a
-//       keyframe (whole, or the tiles listed), coalesced (request_queue.h).
+//   MAP_REQUEST  the deltas since the vehicle's version when all are retained, otherwise
+//       keyframe tiles (all, or the tiles listed), coalesced (keyframe_schedule.h).
 //   CANDIDATES_FREE_<vehicle>  candidates the vehicle's scans saw empty: dropped
 //       (Aggregator::DropCandidatesSeenFree, a version of its own and its MAP_DELTA).
 //   CANDIDATES_HELD_<vehicle>  candidates the vehicle's beams kept ending at for long enough:
 //       added (Aggregator::ConfirmCandidatesHeld, likewise).
-// Downlink, what it sends: TEMPMAP_ACK, MERGE_REPORT, MAP_DELTA, MAP_KEYFRAME (also every
-// keyframe_period_s), MAP_CANDIDATES (after each change of the candidates, and with each
-// periodic keyframe), STATUS_<process_name> every status_period_s.
+// Downlink, what it sends: TEMPMAP_ACK, MERGE_REPORT, MAP_DELTA, MAP_KEYFRAME (asked tiles
+// and a rolling keyframe, one round per keyframe_period_s, while the downlink has room),
+// MAP_CANDIDATES (after each change of the candidates, and every keyframe_period_s),
+// STATUS_<process_name> every status_period_s.
 // Bad input of any kind is counted by cause (node_counters.h), logged once per cause, and
 // changes nothing.
 //
 // Built from parts, each owning one job, wired here: uplink_gate.h (which messages get in),
 // temp_map_receiver.h (tiles into complete maps), map_committer.h (complete maps into the
 // current map, and the acknowledgement that earns), candidate_reports.h (the vehicles'
-// candidate reports), map_request_answerer.h (MAP_REQUEST, the periodic keyframe) and
+// candidate reports), map_request_answerer.h (MAP_REQUEST, the rolling keyframe) and
 // map_publisher.h (everything sent).
 #pragma once
 
@@ -63,9 +64,11 @@ class AggregatorNode {
 
   // One message received on the uplink; `now_s` is the receive time, seconds.
   void OnMessage(const std::string& channel, const void* data, int size, double now_s);
-  // Timers: PENDING acknowledgements, answers to MAP_REQUEST, the periodic keyframe, STATUS,
-  // dropping incomplete maps that went silent. Call it often (every 100 ms or so).
+  // Timers: PENDING acknowledgements, answers to MAP_REQUEST, the rolling keyframe, STATUS,
+  // dropping incomplete maps that went silent. Call it often (every 100 ms or so), and within
+  // milliseconds while sending() says keyframe tiles are due.
   void Tick(double now_s);
+  bool sending(double now_s) const { return answerer_.sending(now_s); }
   // Writes a snapshot of the current map (FailedPrecondition without a state folder).
   core::Status Snapshot() { return aggregator_.WriteSnapshot(); }
 

@@ -79,7 +79,10 @@ void MapPublisher::SendKeyframe(const std::vector<int32_t>* only, double now_s) 
                                          only, lcmtypes::ToUtime(now_s));
   for (const auto& m : messages) Send(Link::kDownlink, lcmtypes::kMapKeyframeChannel, m);
   report_.counters.keyframe_tiles_sent += static_cast<int64_t>(messages.size());
-  ++report_.counters.keyframes_sent;
+}
+
+size_t MapPublisher::room_bytes() const {
+  return publisher_ ? publisher_->RoomBytes(Link::kDownlink) : 0;
 }
 
 void MapPublisher::SendCandidates(double now_s) {
@@ -112,6 +115,7 @@ void MapPublisher::Send(Link link, const std::string& channel, const T& message)
   size_t& largest = largest_[channel];
   largest = std::max(largest, bytes.size());
   if (channel == lcmtypes::kTempMapAckChannel) ++report_.counters.acks_sent;
+  report_.counters.bytes_sent += static_cast<int64_t>(bytes.size());
   if (!publisher_->Publish(link, channel, bytes)) {
     report_.Refuse("publish failed", report_.counters.publish_failures,
                    std::string("the ") + LinkName(link) + " refused a message on " + channel);

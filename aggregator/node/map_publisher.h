@@ -33,6 +33,9 @@ class MapPublisher {
 
   // False without a Publisher: work whose only use is a message can be skipped.
   bool enabled() const { return publisher_ != nullptr; }
+  // Bytes the downlink can take now without queueing them behind others (Publisher::
+  // RoomBytes): traffic that can wait (keyframe tiles) goes only while there is room.
+  size_t room_bytes() const;
 
   // TEMPMAP_ACK PENDING of an incomplete map: the tiles `received` (ascending), which the
   // vehicle will not send again, and the current map's version.
@@ -46,7 +49,7 @@ class MapPublisher {
   void SendMergeReport(const MergeReport& report, const core::Pose2& anchor_in_map, double map_s);
   // MAP_DELTA tiles of one version.
   void SendDelta(const MapDelta& delta, double now_s);
-  // MAP_KEYFRAME of the current map: every tile, or only the linear tile indices `only`.
+  // MAP_KEYFRAME tiles of the current map: every tile, or only the linear tile indices `only`.
   void SendKeyframe(const std::vector<int32_t>* only, double now_s);
   // MAP_CANDIDATES, the whole set at the current version.
   void SendCandidates(double now_s);

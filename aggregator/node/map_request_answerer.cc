@@ -15,8 +15,11 @@ MapRequestAnswerer::MapRequestAnswerer(const Aggregator& aggregator,
       options_(options),
       publisher_(publisher),
       report_(report),
-      requests_(options_.keyframe_min_interval_s),
-      next_keyframe_s_(now_s + options_.keyframe_period_s) {}
+      schedule_(core::TileLayout(aggregator.store().current_map().geometry(),
+                                 aggregator.options().store.tiles.tile_size_cells)
+                    .num_tiles(),
+                options_.keyframe_period_s, now_s),
+      next_candidates_s_(now_s + options_.keyframe_period_s) {}
 
 void MapRequestAnswerer::OnRequest(const void* data, int size) {
   auto msg = lcmtypes::Decode<fleetmap::map_request_t>(data, size);
@@ -52,45 +55,53 @@ void MapRequestAnswerer::Queue(const fleetmap::map_request_t& request) {
   const int64_t have = request.have_version;
   const int64_t current = static_cast<int64_t>(store.version());
   if (!request.tiles.empty() || have < 0 || have > current) {
-    requests_.AddKeyframe(request.tiles);  // (a vehicle ahead of us: our state was lost)
+    schedule_.Ask(request.tiles);  // (a vehicle ahead of us: our state was lost)
   } else if (have < current) {
     const bool retained =
         store.Delta(static_cast<uint64_t>(have)).ok() && store.Delta(current - 1).ok();
     if (retained) {
-      requests_.AddDeltas(static_cast<uint64_t>(have));
+      const auto from = static_cast<uint64_t>(have);
+      deltas_from_ = deltas_from_ ? std::min(*deltas_from_, from) : from;
     } else {
-      requests_.AddKeyframe({});
+      schedule_.Ask({});
     }
   }  // have == current: the vehicle is up to date
 }
 
 void MapRequestAnswerer::Tick(double now_s) {
-  if (options_.keyframe_period_s > 0 && now_s >= next_keyframe_s_) {
-    publisher_.SendKeyframe(nullptr, now_s);
+  SendDeltas(now_s);
+  if (options_.keyframe_period_s > 0 && now_s >= next_candidates_s_) {
     publisher_.SendCandidates(now_s);  // for vehicles that joined since they last changed
-    requests_.WholeKeyframeSent(now_s);
-    next_keyframe_s_ = now_s + options_.keyframe_period_s;
+    next_candidates_s_ = now_s + options_.keyframe_period_s;
   }
-  SendRequested(now_s);
+  SendKeyframeTiles(now_s);
 }
 
-void MapRequestAnswerer::SendRequested(double now_s) {
-  const RequestPlan plan = requests_.Take(now_s);
+void MapRequestAnswerer::SendDeltas(double now_s) {
+  if (!deltas_from_) return;
   const CurrentMapStore& store = aggregator_.store();
-  if (plan.deltas_from) {
-    for (uint64_t v = *plan.deltas_from; v < store.version(); ++v) {
-      auto delta = store.Delta(v);
-      if (!delta.ok()) {  // dropped meanwhile: a keyframe answers instead
-        requests_.AddKeyframe({});
-        break;
-      }
-      publisher_.SendDelta(*delta, now_s);
-      ++report_.counters.deltas_resent;
+  for (uint64_t v = *deltas_from_; v < store.version(); ++v) {
+    auto delta = store.Delta(v);
+    if (!delta.ok()) {  // dropped meanwhile: keyframe tiles answer instead
+      schedule_.Ask({});
+      break;
     }
+    publisher_.SendDelta(*delta, now_s);
+    ++report_.counters.deltas_resent;
   }
-  if (plan.full_keyframe) publisher_.SendKeyframe(nullptr, now_s);
-  if (!plan.full_keyframe && !plan.keyframe_tiles.empty())
-    publisher_.SendKeyframe(&plan.keyframe_tiles, now_s);
+  deltas_from_.reset();
+}
+
+void MapRequestAnswerer::SendKeyframeTiles(double now_s) {
+  if (!publisher_.enabled()) return;
+  while (publisher_.room_bytes() > 0) {
+    const std::optional<int32_t> tile = schedule_.Next(now_s);
+    if (!tile) break;
+    const std::vector<int32_t> only = {*tile};
+    publisher_.SendKeyframe(&only, now_s);
+  }
+  report_.counters.keyframe_rounds = schedule_.rounds();
+  report_.counters.asked_tiles_sent = schedule_.asked_sent();
 }
 
 }  // namespace fleetmap::aggregator::node

@@ -1,26 +1,31 @@
 // Brings vehicles that missed versions of the current map up to date. A MAP_REQUEST names
 // the version the vehicle has, or the tiles it lacks: it is answered with the deltas since
-// that version while the store retains all of them, otherwise with a keyframe (whole, or the
-// tiles listed). Requests are coalesced (request_queue.h) and answered at the next Tick, so
-// that many vehicles asking at once (after a restart, or a delta everyone missed) cost one
-// answer. Unasked, a whole keyframe and the candidates go out every keyframe_period_s for
-// vehicles that missed everything; that keyframe also answers every keyframe request waiting.
-// Owns the waiting requests and the periodic keyframe's time; reads the current map.
+// that version while the store retains all of them, otherwise with keyframe tiles (all, or
+// the tiles listed). Requests are coalesced and answered at the next Tick, so that many
+// vehicles asking at once (after a restart, or a delta everyone missed) cost one answer:
+// deltas once from the oldest version asked for, each keyframe tile once however many asked
+// (keyframe_schedule.h). Unasked, a rolling keyframe sends every tile in turn, one round per
+// keyframe_period_s, and the candidates go out every keyframe_period_s, for vehicles that
+// missed everything. Keyframe tiles can wait: they go only while the downlink has room
+// (MapPublisher::room_bytes), after acknowledgements and deltas, which never wait for them.
+// Owns the waiting requests and the keyframe schedule; reads the current map.
 #pragma once
 
+#include <optional>
+
 #include "aggregator/aggregator.h"
+#include "aggregator/node/keyframe_schedule.h"
 #include "aggregator/node/map_publisher.h"
 #include "aggregator/node/node_options.h"
 #include "aggregator/node/node_reporting.h"
-#include "aggregator/node/request_queue.h"
 #include "fleetmap/map_request_t.hpp"
 
 namespace fleetmap::aggregator::node {
 
 class MapRequestAnswerer {
  public:
-  // `aggregator` and `publisher` outlive this; the first periodic keyframe is due
-  // keyframe_period_s after `now_s`.
+  // `aggregator` and `publisher` outlive this; the rolling keyframe starts at `now_s`, the
+  // first candidates go keyframe_period_s after.
   MapRequestAnswerer(const Aggregator& aggregator, const AggregatorNodeOptions& options,
                      MapPublisher& publisher, NodeReporting report, double now_s);
   MapRequestAnswerer(const MapRequestAnswerer&) = delete;
@@ -28,24 +33,29 @@ class MapRequestAnswerer {
 
   // The payload of a MAP_REQUEST: checked against the current map, then queued.
   void OnRequest(const void* data, int size);
-  // The periodic keyframe when due, then the answers to the requests waiting.
+  // The deltas asked for, the candidates when due, then keyframe tiles (asked ones first)
+  // while the downlink has room.
   void Tick(double now_s);
 
-  // A keyframe request waits (for keyframe_min_interval_s to pass).
-  bool keyframe_waiting() const { return requests_.keyframe_waiting(); }
+  // Keyframe tiles are due now: the caller should Tick again soon.
+  bool sending(double now_s) const { return schedule_.Due(now_s); }
+  // Asked keyframe tiles not yet sent.
+  int32_t tiles_waiting() const { return schedule_.asked(); }
 
  private:
   // False (refused, counted, logged) for a version or tile the current map cannot have.
   bool Possible(const fleetmap::map_request_t& request);
   void Queue(const fleetmap::map_request_t& request);
-  void SendRequested(double now_s);
+  void SendDeltas(double now_s);
+  void SendKeyframeTiles(double now_s);
 
   const Aggregator& aggregator_;
   const AggregatorNodeOptions options_;
   MapPublisher& publisher_;
   NodeReporting report_;
-  RequestQueue requests_;
-  double next_keyframe_s_;
+  std::optional<uint64_t> deltas_from_;  // resend every version from here to the current
+  KeyframeSchedule schedule_;
+  double next_candidates_s_;
 };
 
 }  // namespace fleetmap::aggregator::node

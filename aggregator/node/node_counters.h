@@ -27,8 +27,10 @@ struct NodeCounters {
   int64_t ignored_messages = 0;     // our own TEMPMAP_ACK seen on the uplink (one group)
   int64_t requests = 0;             // valid MAP_REQUESTs
   int64_t bad_requests = 0;         // MAP_REQUESTs with impossible versions or tiles
-  int64_t keyframes_sent = 0;       // whole or partial keyframes
+  int64_t bytes_sent = 0;           // every message handed to the downlink, bytes
   int64_t keyframe_tiles_sent = 0;  // MAP_KEYFRAME messages
+  int64_t asked_tiles_sent = 0;     // of them, tiles a MAP_REQUEST asked for
+  int64_t keyframe_rounds = 0;      // rounds of the rolling keyframe completed
   int64_t delta_tiles_sent = 0;     // MAP_DELTA messages (new versions and resends)
   int64_t deltas_resent = 0;        // versions resent for a MAP_REQUEST
   int64_t acks_sent = 0;            // TEMPMAP_ACK messages, any outcome

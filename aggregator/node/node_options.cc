@@ -1,5 +1,6 @@
 #include "aggregator/node/node_options.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fleetmap::aggregator::node {
@@ -12,8 +13,10 @@ bool Positive(double v) { return std::isfinite(v) && v > 0.0; }
 core::Status AggregatorNodeOptions::Validate() const {
   if (!Positive(pending_ack_interval_s))
     return core::InvalidArgument("node.pending_ack_interval_s must be > 0");
-  if (!Positive(keyframe_min_interval_s))
-    return core::InvalidArgument("node.keyframe_min_interval_s must be > 0");
+  if (!Positive(downlink_bytes_per_s))
+    return core::InvalidArgument("node.downlink_bytes_per_s must be > 0");
+  if (!Positive(downlink_messages_per_s))
+    return core::InvalidArgument("node.downlink_messages_per_s must be > 0");
   if (!(std::isfinite(keyframe_period_s) && keyframe_period_s >= 0.0))
     return core::InvalidArgument("node.keyframe_period_s must be >= 0");
   if (!Positive(status_period_s)) return core::InvalidArgument("node.status_period_s must be > 0");
@@ -35,6 +38,15 @@ core::Status AggregatorNodeOptions::Validate() const {
     return core::InvalidArgument("assembler.max_tiles must be <= 32767");
   FLEETMAP_RETURN_IF_ERROR(limits.Validate());
   return assembler.Validate().WithContext("assembler");
+}
+
+core::PacerOptions AggregatorNodeOptions::DownlinkPacer() const {
+  core::PacerOptions pacer;
+  pacer.rate_per_s = downlink_messages_per_s;
+  pacer.burst = std::max(1.0, downlink_messages_per_s * 0.1);
+  pacer.bytes_per_s = downlink_bytes_per_s;
+  pacer.burst_bytes = std::max<double>(max_message_bytes, downlink_bytes_per_s * 0.1);
+  return pacer;
 }
 
 }  // namespace fleetmap::aggregator::node

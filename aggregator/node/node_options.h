@@ -8,6 +8,7 @@
 
 #include "aggregator/node/vehicle_limits.h"
 #include "auth/key.h"
+#include "core/codec/send_pacer.h"
 #include "core/codec/temp_map_tiles.h"
 
 namespace fleetmap::aggregator::node {
@@ -17,11 +18,16 @@ struct AggregatorNodeOptions {
   // at most this often, s > 0, the first this long after its first tile: its other tiles
   // usually follow in the same burst, and the vehicle resends after 1 s by default.
   double pending_ack_interval_s = 0.5;
-  // Keyframes asked for by MAP_REQUEST are coalesced: at most one per this, s > 0.
-  double keyframe_min_interval_s = 0.5;
-  // A keyframe is sent unasked this often so that a vehicle that missed everything catches
-  // up, s >= 0 (0: never).
+  // The rolling keyframe sends every tile of the current map in turn, one round per this
+  // (longer when the downlink's budget does not allow it), so that a vehicle that missed
+  // everything catches up; the candidates go out as often. s >= 0 (0: neither).
   double keyframe_period_s = 10.0;
+  // The downlink's budget (docs/channels.md): everything the node sends, paced, bytes/s > 0.
+  // Multicast on Wi-Fi goes at the channel's basic rate (often 6 Mbit/s): 200 kB/s is 1.6
+  // Mbit/s of it, and a 40M-cell hall's whole map (1.7 MB) in about 8 s.
+  double downlink_bytes_per_s = 200000.0;
+  // ... and messages/s > 0: tiles are small, and slow readers (lcm-logger) drop bursts.
+  double downlink_messages_per_s = 2000.0;
   double status_period_s = 1.0;  // STATUS_aggregator period, s > 0
   // An incomplete map that received no tile for this long is dropped, s > 0. A live vehicle
   // resends at least every max_resend_s (16 s by default).
@@ -63,6 +69,9 @@ struct AggregatorNodeOptions {
   std::string process_name = "aggregator";   // STATUS_<process_name>
   std::string software_version = "unknown";  // in STATUS
   core::Status Validate() const;
+  // The downlink's pacing: the budget above, a tenth of a second of it (at least one message
+  // of max_message_bytes) at once.
+  core::PacerOptions DownlinkPacer() const;
 };
 
 }  // namespace fleetmap::aggregator::node

@@ -1,11 +1,13 @@
 #include "core/map/map_replica.h"
 
+#include <algorithm>
+#include <iterator>
+
 namespace fleetmap::core {
 namespace {
 
-bool SameKeyframe(const KeyframeTile& a, const KeyframeTile& b) {
-  return a.version == b.version && a.geometry == b.geometry &&
-         a.tile_size_cells == b.tile_size_cells && a.count == b.count;
+bool SameLayout(const KeyframeTile& a, const KeyframeTile& b) {
+  return a.geometry == b.geometry && a.tile_size_cells == b.tile_size_cells && a.count == b.count;
 }
 
 }  // namespace
@@ -56,29 +58,79 @@ Result<bool> MapReplica::AddKeyframeTile(const KeyframeTile& tile) {
     return DataLoss("keyframe tile index or count does not fit the map");
   }
   if (map_ && tile.version <= version_) return false;  // we are already there
-  if (!keyframe_header_ || !SameKeyframe(*keyframe_header_, tile)) {
-    // A newer keyframe replaces one half received.
-    if (keyframe_header_ && tile.version < keyframe_header_->version) return false;
-    keyframe_header_ = tile;
-    keyframe_header_->frame.clear();
+  if (keyframe_header_ && !SameLayout(*keyframe_header_, tile)) {
+    if (tile.version < keyframe_header_->version) return false;  // a tile of an older map
+    keyframe_header_.reset();  // the aggregator's map was replaced: start again
     keyframe_tiles_.clear();
   }
-  keyframe_tiles_[tile.index] = EncodedTile{tile.tile, tile.frame};
-  if (static_cast<int32_t>(keyframe_tiles_.size()) < tile.count) return false;
-  OccupancyGrid grid(tile.geometry);
+  if (!keyframe_header_) {
+    keyframe_header_ = tile;
+    keyframe_header_->frame.clear();
+  }
+  keyframe_header_->version = std::max(keyframe_header_->version, tile.version);
+  const auto held = keyframe_tiles_.find(tile.index);
+  if (held == keyframe_tiles_.end() || held->second.version <= tile.version)
+    keyframe_tiles_[tile.index] = HeldTile{tile.version, EncodedTile{tile.tile, tile.frame}};
+  if (!map_) {
+    // Tiles are cut from the aggregator's current map when sent: none still to come is older
+    // than those held, so older deltas can never be needed.
+    int32_t oldest = keyframe_header_->version;
+    for (const auto& [i, t] : keyframe_tiles_) oldest = std::min(oldest, t.version);
+    deltas_.erase(deltas_.begin(), deltas_.lower_bound(oldest));
+  }
+  return CompleteKeyframe();
+}
+
+Result<bool> MapReplica::CompleteKeyframe() {
+  if (keyframe_header_ && map_ && keyframe_header_->version <= version_) {
+    keyframe_header_.reset();  // the deltas asked for got there first
+    keyframe_tiles_.clear();
+  }
+  if (!keyframe_header_ || static_cast<int32_t>(keyframe_tiles_.size()) < keyframe_header_->count)
+    return false;
+  const int32_t newest = keyframe_header_->version;
+  bool all_current = true;
+  for (auto it = keyframe_tiles_.begin(); it != keyframe_tiles_.end();) {
+    HeldTile& held = it->second;
+    bool lost = false;
+    for (; held.version < newest; ++held.version) {
+      const auto delta = deltas_.find(held.version);
+      if (delta == deltas_.end()) {
+        lost = true;  // missed: the tile waits for its next copy
+        break;
+      }
+      const PendingVersion& p = delta->second;
+      if (static_cast<int32_t>(p.tiles.size()) < p.count) break;  // its tiles still arrive
+      const auto changed = p.tiles.find(it->first);
+      if (changed != p.tiles.end()) held.tile = changed->second;
+    }
+    all_current = all_current && held.version == newest && !lost;
+    it = lost ? keyframe_tiles_.erase(it) : std::next(it);
+  }
+  if (!all_current) return false;
+  const KeyframeTile header = *keyframe_header_;
+  OccupancyGrid grid(header.geometry);
   std::vector<EncodedTile> tiles;
-  for (auto& [i, t] : keyframe_tiles_) tiles.push_back(std::move(t));
+  for (auto& [i, t] : keyframe_tiles_) tiles.push_back(std::move(t.tile));
   keyframe_tiles_.clear();
-  const Status applied = ApplyTiles(tiles, tile.tile_size_cells, grid);
   keyframe_header_.reset();
-  if (!applied.ok()) return applied.WithContext("keyframe version " + std::to_string(tile.version));
+  const Status applied = ApplyTiles(tiles, header.tile_size_cells, grid);
+  if (!applied.ok()) return applied.WithContext("keyframe version " + std::to_string(newest));
   map_ = std::move(grid);
-  version_ = tile.version;
-  tile_size_cells_ = tile.tile_size_cells;
+  version_ = newest;
+  tile_size_cells_ = header.tile_size_cells;
   whole_changed_ = true;
   deltas_.erase(deltas_.begin(), deltas_.lower_bound(version_));  // older than the keyframe
   ApplyReadyDeltas();
   return map_.has_value();  // a corrupt buffered delta drops the map it completed
+}
+
+std::vector<int32_t> MapReplica::MissingKeyframeTiles() const {
+  std::vector<int32_t> missing;
+  if (!keyframe_header_) return missing;
+  for (int32_t i = 0; i < keyframe_header_->count; ++i)
+    if (!keyframe_tiles_.count(i)) missing.push_back(i);
+  return missing;
 }
 
 Result<bool> MapReplica::AddDeltaTile(const DeltaTile& tile) {
@@ -96,6 +148,11 @@ Result<bool> MapReplica::AddDeltaTile(const DeltaTile& tile) {
   if (tile.count > 0) p.tiles[tile.index] = EncodedTile{tile.tile, tile.frame};
   const int32_t before = version_;
   if (map_) ApplyReadyDeltas();
+  // The last tile of a delta a keyframe being assembled waited for.
+  if (NeedsKeyframe() && keyframe_header_) {
+    auto completed = CompleteKeyframe();
+    if (!completed.ok()) return completed;
+  }
   return map_.has_value() && version_ != before;  // not when a corrupt delta dropped the map
 }
 

@@ -37,7 +37,11 @@ std::string Num(double v) {
 }  // namespace
 
 ChangeCost MeasureChangeCost(const std::vector<LogMessage>& messages) {
-  std::map<int32_t, VersionTiles> deltas, keyframes;
+  std::map<int32_t, VersionTiles> deltas;
+  // The rolling keyframe's tiles are of several versions: a whole keyframe is the latest copy
+  // of every tile.
+  std::map<int32_t, int64_t> keyframe_tile_bytes;
+  int32_t keyframe_tile_count = 0;
   ChangeCost cost;
   for (const LogMessage& m : messages) {
     const int size = static_cast<int>(auth::PayloadSize(m.data.data(), m.data.size()));
@@ -47,7 +51,8 @@ ChangeCost MeasureChangeCost(const std::vector<LogMessage>& messages) {
     } else if (m.channel == lcmtypes::kMapKeyframeChannel) {
       auto k = lcmtypes::Decode<fleetmap::map_keyframe_t>(m.data.data(), size);
       if (!k.ok()) continue;
-      Add(keyframes[k->version], k->tile_index, k->tile_count, m.data.size());
+      keyframe_tile_bytes[k->tile_index] = static_cast<int64_t>(m.data.size());
+      keyframe_tile_count = k->tile_count;
       cost.map_cells = int64_t{k->width_cells} * k->height_cells;
     }
   }
@@ -57,11 +62,10 @@ ChangeCost MeasureChangeCost(const std::vector<LogMessage>& messages) {
     delta_bytes += v.Total();
     delta_tiles += v.tile_count;
   }
-  for (const auto& [version, v] : keyframes) {
-    if (v.tile_count <= 0 || int(v.bytes_by_tile.size()) != v.tile_count) continue;
-    ++cost.keyframes_complete;
-    keyframe_bytes += v.Total();
-    cost.keyframe_tiles = v.tile_count;
+  if (keyframe_tile_count > 0 && int(keyframe_tile_bytes.size()) == keyframe_tile_count) {
+    cost.keyframes_complete = 1;
+    for (const auto& [index, bytes] : keyframe_tile_bytes) keyframe_bytes += bytes;
+    cost.keyframe_tiles = keyframe_tile_count;
   }
   if (cost.changes > 0) {
     cost.delta_bytes_mean = delta_bytes / cost.changes;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,6 +37,7 @@ class RecordingPublisher : public Publisher {
     sent.push_back({link, channel, bytes});
     return accept;
   }
+  size_t RoomBytes(Link) const override { return room_bytes; }
   // Every message on `channel` from the `from`-th sent on, decoded.
   template <typename T>
   std::vector<T> Decoded(const std::string& channel, size_t from = 0) const {
@@ -51,6 +53,8 @@ class RecordingPublisher : public Publisher {
   }
 
   bool accept = true;  // what Publish answers: false as a full send buffer does
+  // What RoomBytes answers: 0 as a link whose budget is spent, or that has messages waiting.
+  size_t room_bytes = std::numeric_limits<size_t>::max();
   std::vector<SentMessage> sent;
 };
 

@@ -24,12 +24,14 @@ fleetmap::divergence_t DivergenceMessage(const std::string& vehicle_id, double s
 }
 
 fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t have_version,
-                                          int64_t utime) {
+                                          const std::vector<int32_t>& tiles, int64_t utime) {
   fleetmap::map_request_t r;
   r.utime = utime;
   r.vehicle_id = vehicle_id;
   r.have_version = have_version;
-  r.num_tiles = 0;  // no tile list: the whole map, or the deltas since have_version
+  // No tile list: the whole map, or the deltas since have_version.
+  r.num_tiles = static_cast<int32_t>(tiles.size());
+  r.tiles = tiles;
   return r;
 }
 

@@ -21,7 +21,7 @@ fleetmap::divergence_t DivergenceMessage(const std::string& vehicle_id, double s
                                          const AgentStep& step, int32_t tempmap_sequence);
 // MAP_REQUEST for the whole map (or the deltas since have_version, -1: none held).
 fleetmap::map_request_t MapRequestMessage(const std::string& vehicle_id, int32_t have_version,
-                                          int64_t utime);
+                                          const std::vector<int32_t>& tiles, int64_t utime);
 // CANDIDATES_FREE_<id>: the candidates seen free in messages of at most
 // kMaxCandidateCellsPerMessage cells, the passes' times as scan time (as maps carry it).
 std::vector<fleetmap::candidates_free_t> SeenFreeMessages(const std::string& vehicle_id,

@@ -164,7 +164,7 @@ void AgentNode::Tick(double now_s) {
   ApplyMap();
   for (const SensorInput& input : intake_.TakeAll()) Process(input, now_s);
   if (const std::optional<int32_t> have = maps_.RequestDue(now_s))
-    sender_.SendMapRequest(*have, now_s);
+    sender_.SendMapRequest(*have, maps_.request_tiles(), now_s);
   SendTiles(now_s);
   SendCandidates(now_s);
   if (now_s >= next_status_s_) {

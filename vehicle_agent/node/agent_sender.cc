@@ -51,9 +51,10 @@ void AgentSender::SendTiles(const std::vector<core::TempMapTile>& tiles, double 
     Send(Link::kUplink, channel, lcmtypes::ToMessage(tile, Utime(now_s)));
 }
 
-void AgentSender::SendMapRequest(int32_t have_version, double now_s) {
+void AgentSender::SendMapRequest(int32_t have_version, const std::vector<int32_t>& tiles,
+                                 double now_s) {
   Send(Link::kUplink, lcmtypes::kMapRequestChannel,
-       MapRequestMessage(vehicle_id_, have_version, Utime(now_s)));
+       MapRequestMessage(vehicle_id_, have_version, tiles, Utime(now_s)));
 }
 
 void AgentSender::SendCandidates(const CandidatesSeenFree& seen, const CandidatesHeld& held,

@@ -29,8 +29,8 @@ class AgentSender {
   void SendStep(const core::LaserScan& scan, const AgentStep& step, int32_t tempmap_sequence);
   // TEMPMAP_<id>, one message per tile.
   void SendTiles(const std::vector<core::TempMapTile>& tiles, double now_s);
-  // MAP_REQUEST with the version held (-1: none).
-  void SendMapRequest(int32_t have_version, double now_s);
+  // MAP_REQUEST with the version held (-1: none) and the keyframe tiles lacked (none: all).
+  void SendMapRequest(int32_t have_version, const std::vector<int32_t>& tiles, double now_s);
   // CANDIDATES_FREE_<id>, then CANDIDATES_HELD_<id>: as many messages as the cells need
   // (none for no cells).
   void SendCandidates(const CandidatesSeenFree& seen, const CandidatesHeld& held,

@@ -92,8 +92,19 @@ std::optional<int32_t> MapFollower::RequestDue(double now_s) {
   // A keyframe is a hundred tiles: ask once per period, whatever triggered it.
   if (now_s - last_request_s_ < options_.request_period_s) return std::nullopt;
   last_request_s_ = now_s;
+  // Keyframe tiles came since the last request: the answer (or the rolling keyframe) is
+  // arriving, and asking again would only queue the same tiles once more.
+  const bool arriving = asked_once_ && !replica_.has_map() &&
+                        counters_.keyframe_tiles > keyframe_tiles_at_last_request_;
+  keyframe_tiles_at_last_request_ = counters_.keyframe_tiles;
+  if (arriving) return std::nullopt;
   asked_once_ = true;
   ++counters_.requests;
+  request_tiles_.clear();
+  if (!replica_.has_map()) {
+    std::vector<int32_t> missing = replica_.MissingKeyframeTiles();
+    if (missing.size() <= kMaxRequestTiles) request_tiles_ = std::move(missing);
+  }
   return replica_.has_map() ? replica_.version() : -1;
 }
 

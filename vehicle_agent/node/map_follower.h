@@ -2,8 +2,10 @@
 // of the aggregator's current map (core::MapReplica) and decides when to send MAP_REQUEST.
 //   - seeded with the static map file (version 0 at the aggregator): one request with
 //     have_version 0 at start, so that the aggregator resends the deltas merged since;
-//   - without a map: a request with have_version -1 every request period until a keyframe
-//     is complete;
+//   - without a map: a request with have_version -1 naming the keyframe tiles it lacks (all
+//     of them before the first tile), again only after a whole request period in which no
+//     keyframe tile came: while tiles come, the answer is arriving (the aggregator sends
+//     within its downlink's byte budget, so a large map takes seconds);
 //   - a version gap (a delta for a version after one we missed), or the aggregator's
 //     heartbeat showing a newer version for a whole period: a request with our version;
 //   - the heartbeat showing an older version than ours for two periods: the aggregator
@@ -16,10 +18,15 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "core/map/map_replica.h"
 
 namespace fleetmap::vehicle_agent::node {
+
+// A request names at most this many tiles (4 bytes each, in a message of a few kilobytes);
+// a vehicle lacking more asks for the whole map.
+constexpr size_t kMaxRequestTiles = 2048;
 
 struct MapFollowerOptions {
   int tile_size_cells = 64;        // the tiling of the aggregator's deltas, cells, >= 4
@@ -55,6 +62,9 @@ class MapFollower {
   // have_version for a MAP_REQUEST to send now (-1: no map), or nothing. Counts the request.
   // Drops the replica first when the heartbeat says the aggregator's versions went back.
   std::optional<int32_t> RequestDue(double now_s);
+  // The keyframe tiles the request just due names (linear indices, ascending); empty: the
+  // whole map, or none when it has a map (deltas since have_version then).
+  const std::vector<int32_t>& request_tiles() const { return request_tiles_; }
 
   bool has_map() const { return replica_.has_map(); }
   const core::OccupancyGrid& map() const { return replica_.map(); }
@@ -72,6 +82,8 @@ class MapFollower {
   core::MapReplica replica_;
   std::optional<core::GridGeometry> geometry_;  // of the seed or the first keyframe
   bool asked_once_ = false;
+  int64_t keyframe_tiles_at_last_request_ = 0;  // counters_.keyframe_tiles then
+  std::vector<int32_t> request_tiles_;
   double last_request_s_ = -std::numeric_limits<double>::infinity();
   int32_t remote_version_ = -1;
   double remote_ahead_since_s_ = 0.0;   // when the heartbeat first showed a newer version

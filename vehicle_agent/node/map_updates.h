@@ -33,6 +33,8 @@ class MapUpdates {
   bool Apply(AgentPipeline& pipeline);
   // have_version for a MAP_REQUEST to send now, or nothing (MapFollower::RequestDue).
   std::optional<int32_t> RequestDue(double now_s);
+  // The keyframe tiles that request names (MapFollower::request_tiles).
+  const std::vector<int32_t>& request_tiles() const { return follower_.request_tiles(); }
 
   // Whether the pipeline has a map, and its version (-1: none yet).
   bool in_use() const { return in_use_; }

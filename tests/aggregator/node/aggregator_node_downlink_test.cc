@@ -1,6 +1,6 @@
 // AggregatorNode in memory, what it sends on the downlink: the deltas of every merge, and
-// keyframes and retained deltas for the vehicles that ask (MAP_REQUEST), which rebuild exactly
-// the current map; STATUS every second and the periodic keyframe; every message a few
+// keyframe tiles and retained deltas for the vehicles that ask (MAP_REQUEST), which rebuild
+// exactly the current map; STATUS every second and the rolling keyframe; every message a few
 // kilobytes at most.
 #include <gtest/gtest.h>
 
@@ -35,6 +35,17 @@ std::vector<uint8_t> Request(int32_t have_version, std::vector<int32_t> tiles = 
   r.tiles = std::move(tiles);
   r.num_tiles = static_cast<int32_t>(r.tiles.size());
   return Encode(r);
+}
+
+// Without the rolling keyframe: the keyframe tiles sent are those asked for.
+AggregatorNodeOptions OnlyAskedKeyframes() {
+  AggregatorNodeOptions options;
+  options.keyframe_period_s = 0.0;
+  return options;
+}
+
+int TileCount(const AggregatorNode& node) {
+  return core::TileLayout(node.aggregator().store().current_map().geometry(), 64).num_tiles();
 }
 
 void SendRequest(AggregatorNode& node, const std::vector<uint8_t>& bytes, double now_s) {
@@ -75,10 +86,10 @@ void ExpectSameMap(const core::OccupancyGrid& a, const core::OccupancyGrid& b) {
 
 TEST(AggregatorNodeTest, DeltasAppliedToAKeyframeReplicaGiveTheCurrentMap) {
   RecordingPublisher out;
-  auto node = MakeNode(&out);
+  auto node = MakeNode(&out, {}, "", OnlyAskedKeyframes());
   SendRequest(*node, Request(-1), 1.0);  // a vehicle without a map
   node->Tick(1.0);
-  EXPECT_EQ(node->counters().keyframes_sent, 1);
+  EXPECT_EQ(node->counters().asked_tiles_sent, TileCount(*node));
   for (size_t i = 0; i < PalletMaps().size(); ++i) {
     Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + int64_t(i) * 20'000'000), 2.0 + i);
   }
@@ -95,26 +106,25 @@ TEST(AggregatorNodeTest, DeltasAppliedToAKeyframeReplicaGiveTheCurrentMap) {
 
 TEST(AggregatorNodeTest, KeyframeRequestsBuildTheSameMapAndAreCoalesced) {
   RecordingPublisher out;
-  auto node = MakeNode(&out);
+  auto node = MakeNode(&out, {}, "", OnlyAskedKeyframes());
   for (size_t i = 0; i < PalletMaps().size(); ++i) {
     Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + int64_t(i) * 20'000'000), 1.0);
   }
   out.sent.clear();
   SendRequest(*node, Request(-1), 2.0);
-  SendRequest(*node, Request(-1), 2.0);  // another vehicle, same moment
+  SendRequest(*node, Request(-1), 2.0);  // another vehicle, same moment: one answer
   node->Tick(2.0);
-  SendRequest(*node, Request(-1), 2.2);
-  node->Tick(2.2);  // within 0.5 s of the last keyframe: waits
   const CurrentMapStore& store = node->aggregator().store();
-  const int tiles = core::TileLayout(store.current_map().geometry(), 64).num_tiles();
+  const int tiles = TileCount(*node);
   EXPECT_EQ(out.Count(lcmtypes::kMapKeyframeChannel), static_cast<size_t>(tiles));
   const core::MapReplica replica = Replay(out);
   ASSERT_TRUE(replica.has_map());
   EXPECT_EQ(replica.version(), 4);
   ExpectSameMap(replica.map(), store.current_map());
-  node->Tick(2.5);
+  SendRequest(*node, Request(-1), 2.2);  // after the answer went: answered again
+  node->Tick(2.2);
   EXPECT_EQ(out.Count(lcmtypes::kMapKeyframeChannel), 2u * tiles);
-  EXPECT_EQ(node->counters().keyframes_sent, 2);
+  EXPECT_EQ(node->counters().asked_tiles_sent, 2 * tiles);
   EXPECT_EQ(node->counters().requests, 3);
 
   out.sent.clear();  // only the tiles a vehicle lacks
@@ -132,7 +142,7 @@ TEST(AggregatorNodeTest, KeyframeRequestsBuildTheSameMapAndAreCoalesced) {
 
 TEST(AggregatorNodeTest, RequestFromARetainedVersionGetsTheDeltasSince) {
   RecordingPublisher out;
-  auto node = MakeNode(&out);
+  auto node = MakeNode(&out, {}, "", OnlyAskedKeyframes());
   for (size_t i = 0; i < PalletMaps().size(); ++i) {
     Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + int64_t(i) * 20'000'000), 1.0);
   }
@@ -151,7 +161,7 @@ TEST(AggregatorNodeTest, RequestFromARetainedVersionGetsTheDeltasSince) {
   SendRequest(*node, Request(1), 2.0);
   SendRequest(*node, Request(4), 2.0);  // up to date: nothing to send
   node->Tick(2.0);
-  EXPECT_EQ(node->counters().keyframes_sent, 0);
+  EXPECT_EQ(node->counters().asked_tiles_sent, 0);
   EXPECT_EQ(node->counters().deltas_resent, 3);
   std::set<int32_t> bases;
   for (size_t i = before; i < out.sent.size(); ++i) {
@@ -170,10 +180,10 @@ TEST(AggregatorNodeTest, RequestFromARetainedVersionGetsTheDeltasSince) {
   // Versions no longer retained, or a vehicle ahead of us: a keyframe instead.
   SendRequest(*node, Request(7), 3.0);
   node->Tick(3.0);
-  EXPECT_EQ(node->counters().keyframes_sent, 1);
+  EXPECT_EQ(node->counters().asked_tiles_sent, TileCount(*node));
 }
 
-TEST(AggregatorNodeTest, StatusEverySecondAndAKeyframeEveryPeriod) {
+TEST(AggregatorNodeTest, StatusEverySecondAndARollingKeyframeRoundEveryPeriod) {
   RecordingPublisher out;
   AggregatorNodeOptions options;
   options.keyframe_period_s = 10.0;
@@ -189,12 +199,14 @@ TEST(AggregatorNodeTest, StatusEverySecondAndAKeyframeEveryPeriod) {
   EXPECT_EQ(status[0].num_counters, static_cast<int32_t>(status[0].counter_names.size()));
   for (const char* name :
        {"tiles_received", "maps_completed", "maps_merged", "maps_rejected", "duplicates",
-        "malformed_messages", "wrong_vehicle_id", "unknown_channel", "requests", "keyframes_sent",
-        "delta_tiles_sent", "persist_errors"}) {
+        "malformed_messages", "wrong_vehicle_id", "unknown_channel", "requests",
+        "keyframe_tiles_sent", "delta_tiles_sent", "persist_errors"}) {
     EXPECT_EQ(std::count(status[0].counter_names.begin(), status[0].counter_names.end(), name), 1)
         << name;
   }
-  EXPECT_EQ(node->counters().keyframes_sent, 2);  // at 110 s and 120 s
+  EXPECT_EQ(node->counters().keyframe_rounds, 2);  // 21 s at one round per 10 s
+  EXPECT_NEAR(static_cast<double>(node->counters().keyframe_tiles_sent), 2.1 * TileCount(*node),
+              2.0);
   for (const SentMessage& m : out.sent) EXPECT_EQ(m.link, Link::kDownlink) << m.channel;
 }
 

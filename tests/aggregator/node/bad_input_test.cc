@@ -129,7 +129,7 @@ TEST_F(AggregatorNodeBadInputTest, GarbageAndImpossibleMapRequestsAreCounted) {
   EXPECT_EQ(node_->counters().bad_requests, 3);
   EXPECT_EQ(node_->counters().requests, 0);
   node_->Tick(1.0);
-  EXPECT_EQ(node_->counters().keyframes_sent, 0);
+  EXPECT_EQ(node_->counters().asked_tiles_sent, 0);
   EXPECT_EQ(log_.Containing("MAP_REQUEST"), 2);  // one line per cause
   ExpectMapUnchanged();
 }

@@ -1,10 +1,12 @@
 // Catching vehicles up (map_request_answerer.h), driven directly with MAP_REQUEST payloads:
-// deltas from a retained version, coalesced keyframes of the tiles asked for, impossible
-// requests refused, and the periodic keyframe answering what waits.
+// deltas from a retained version, keyframe tiles asked for sent once however many ask and only
+// while the downlink has room, impossible requests refused, and the rolling keyframe.
 #include "aggregator/node/map_request_answerer.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <set>
 
 #include "tests/aggregator/node/node_parts_util.h"
@@ -69,28 +71,61 @@ TEST(MapRequestAnswererTest, ARetainedVersionIsAnsweredWithTheDeltasSinceTheOlde
     bases.insert(d.base_version);
   EXPECT_EQ(bases, (std::set<int32_t>{1, 2}));
   EXPECT_EQ(a.parts.counters.deltas_resent, 2);
-  EXPECT_EQ(a.parts.counters.keyframes_sent, 0);
+  EXPECT_EQ(a.parts.counters.asked_tiles_sent, 0);
 }
 
-TEST(MapRequestAnswererTest, KeyframeRequestsAreCoalescedAndAtMostOncePerInterval) {
-  Answering a;
+AggregatorNodeOptions NoRollingKeyframe() {
+  AggregatorNodeOptions options;
+  options.keyframe_period_s = 0.0;
+  return options;
+}
+
+TEST(MapRequestAnswererTest, KeyframeTilesAskedForGoOnceHoweverManyVehiclesAsk) {
+  Answering a(NoRollingKeyframe());
   a.Ask(0, {5});
-  a.Ask(0, {1, 5});
+  a.Ask(0, {1, 5}, "v2");
+  a.Ask(0, {5});
   a.answerer.Tick(1.0);
   EXPECT_EQ(a.KeyframeTiles(), (std::vector<int32_t>{1, 5}));
-  EXPECT_EQ(a.parts.counters.keyframes_sent, 1);
+  EXPECT_EQ(a.parts.counters.asked_tiles_sent, 2);
+  a.parts.out.sent.clear();
   a.Ask(4);  // a vehicle ahead of us (our state was lost): the whole map
-  a.answerer.Tick(1.2);
-  EXPECT_EQ(a.parts.counters.keyframes_sent, 1);  // keyframe_min_interval_s not yet passed
-  EXPECT_TRUE(a.answerer.keyframe_waiting());
-  a.answerer.Tick(1.5);
-  EXPECT_EQ(a.parts.counters.keyframes_sent, 2);
-  EXPECT_GT(a.KeyframeTiles().size(), 3u);
-  EXPECT_FALSE(a.answerer.keyframe_waiting());
+  a.Ask(-1, {}, "v2");
+  a.answerer.Tick(1.1);
+  const std::vector<int32_t> tiles = a.KeyframeTiles();
+  ASSERT_GT(tiles.size(), 3u);
+  EXPECT_EQ(std::set<int32_t>(tiles.begin(), tiles.end()).size(), tiles.size()) << "each once";
+  EXPECT_EQ(tiles.size(),
+            static_cast<size_t>(
+                a.parts.out.Decoded<fleetmap::map_keyframe_t>(lcmtypes::kMapKeyframeChannel)[0]
+                    .tile_count));
+}
+
+// Keyframe tiles wait while the downlink has no room (its budget spent, or messages queued);
+// the deltas asked for do not wait for them.
+TEST(MapRequestAnswererTest, KeyframeTilesWaitForRoomDeltasDoNot) {
+  Answering a(NoRollingKeyframe());
+  a.Merge(2);
+  a.parts.out.room_bytes = 0;
+  a.Ask(-1, {}, "new");
+  a.Ask(1, {}, "behind");
+  a.answerer.Tick(1.0);
+  EXPECT_TRUE(a.KeyframeTiles().empty());
+  EXPECT_EQ(a.parts.counters.deltas_resent, 1) << "the delta 1 -> 2";
+  EXPECT_GT(a.parts.out.Count(lcmtypes::kMapDeltaChannel), 0u);
+  EXPECT_GT(a.answerer.tiles_waiting(), 0);
+  EXPECT_TRUE(a.answerer.sending(1.0));
+  const int32_t waiting = a.answerer.tiles_waiting();
+  a.parts.out.room_bytes = std::numeric_limits<size_t>::max();
+  a.answerer.Tick(1.1);
+  EXPECT_EQ(static_cast<int32_t>(a.KeyframeTiles().size()), waiting);
+  EXPECT_EQ(a.answerer.tiles_waiting(), 0);
+  for (const auto& k : a.parts.out.Decoded<fleetmap::map_keyframe_t>(lcmtypes::kMapKeyframeChannel))
+    EXPECT_EQ(k.version, 2) << "cut from the map when sent";
 }
 
 TEST(MapRequestAnswererTest, ARequestTheMapCannotAnswerIsRefusedCountedAndLoggedOnce) {
-  Answering a;
+  Answering a(NoRollingKeyframe());
   a.Ask(-2);
   a.Ask(0, {1 << 20});
   a.Ask(0, {}, std::string(100, 'v'));
@@ -104,21 +139,30 @@ TEST(MapRequestAnswererTest, ARequestTheMapCannotAnswerIsRefusedCountedAndLogged
   EXPECT_TRUE(a.parts.out.sent.empty());
 }
 
-TEST(MapRequestAnswererTest, ThePeriodicKeyframeGoesOutWithTheCandidatesAndAnswersWhatWaits) {
+// Unasked, every tile goes in turn, one round per period, spread over it (no burst), and the
+// candidates once per period.
+TEST(MapRequestAnswererTest, TheRollingKeyframeSendsEveryTileInTurnOnceAPeriod) {
   AggregatorNodeOptions options;
   options.keyframe_period_s = 10.0;
   Answering a(options);
-  a.answerer.Tick(9.9);
-  EXPECT_TRUE(a.parts.out.sent.empty());
-  a.Ask(0, {3});
-  a.answerer.Tick(10.0);
-  EXPECT_EQ(a.parts.counters.keyframes_sent, 1);  // the whole one; the request needs no other
+  size_t most_in_one_tick = 0;
+  for (int tick = 1; tick <= 102; ++tick) {  // 10.2 s
+    const size_t before = a.parts.out.Count(lcmtypes::kMapKeyframeChannel);
+    a.answerer.Tick(0.1 * tick);
+    most_in_one_tick =
+        std::max(most_in_one_tick, a.parts.out.Count(lcmtypes::kMapKeyframeChannel) - before);
+  }
+  const std::vector<int32_t> tiles = a.KeyframeTiles();
+  ASSERT_FALSE(tiles.empty());
+  const int32_t count =
+      a.parts.out.Decoded<fleetmap::map_keyframe_t>(lcmtypes::kMapKeyframeChannel)[0].tile_count;
+  ASSERT_GE(tiles.size(), static_cast<size_t>(count));
+  EXPECT_LE(tiles.size(), static_cast<size_t>(count) * 103 / 100 + 1);
+  for (int32_t i = 0; i < count; ++i) EXPECT_EQ(tiles[i], i);
+  EXPECT_EQ(a.parts.counters.keyframe_rounds, 1);
+  EXPECT_LE(most_in_one_tick, static_cast<size_t>(count / 10 + 1));
   EXPECT_EQ(a.parts.counters.candidate_sets_sent, 1);
-  EXPECT_FALSE(a.answerer.keyframe_waiting());
-  a.answerer.Tick(19.9);
-  EXPECT_EQ(a.parts.counters.keyframes_sent, 1);
-  a.answerer.Tick(20.0);
-  EXPECT_EQ(a.parts.counters.keyframes_sent, 2);
+  EXPECT_EQ(a.parts.counters.asked_tiles_sent, 0);
 }
 
 TEST(MapRequestAnswererTest, APeriodOfZeroSendsNoKeyframeUnasked) {

@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "aggregator/node/keyframe_schedule.h"
 #include "aggregator/node/map_hash.h"
 #include "aggregator/node/node_config.h"
-#include "aggregator/node/request_queue.h"
 #include "aggregator/node/tile_spool.h"
 #include "tests/aggregator/test_files.h"
 #include "tests/aggregator/test_hall.h"
@@ -33,8 +33,9 @@ TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
   const AggregatorProcessConfig d = DefaultProcessConfig();
   const AggregatorNodeOptions &n = c->node, &nd = d.node;
   EXPECT_EQ(n.pending_ack_interval_s, nd.pending_ack_interval_s);
-  EXPECT_EQ(n.keyframe_min_interval_s, nd.keyframe_min_interval_s);
   EXPECT_EQ(n.keyframe_period_s, nd.keyframe_period_s);
+  EXPECT_EQ(n.downlink_bytes_per_s, nd.downlink_bytes_per_s);
+  EXPECT_EQ(n.downlink_messages_per_s, nd.downlink_messages_per_s);
   EXPECT_EQ(n.status_period_s, nd.status_period_s);
   EXPECT_EQ(n.pending_map_timeout_s, nd.pending_map_timeout_s);
   EXPECT_EQ(n.max_message_bytes, nd.max_message_bytes);
@@ -192,28 +193,43 @@ TEST(AggregatorNodeMapHashTest, EqualMapsEqualHashesAnyCellOrGeometryChangesIt) 
             "aggregator: version 3 map_hash 0000000000000abc merged 2 rejected 1");
 }
 
-TEST(AggregatorNodeRequestQueueTest, DeltasFromTheOldestVersionKeyframesAtMostOncePerInterval) {
-  RequestQueue q(0.5);
-  q.AddDeltas(5);
-  q.AddDeltas(3);
-  q.AddKeyframe({4, 2});
-  q.AddKeyframe({2, 9});
-  RequestPlan p = q.Take(10.0);
-  EXPECT_EQ(p.deltas_from, 3u);
-  EXPECT_FALSE(p.full_keyframe);
-  EXPECT_EQ(p.keyframe_tiles, (std::vector<int32_t>{2, 4, 9}));
-  q.AddKeyframe({});
-  p = q.Take(10.2);
-  EXPECT_FALSE(p.keyframe());  // waits for the interval
-  EXPECT_FALSE(p.deltas_from.has_value());
-  q.AddKeyframe({1});  // a whole one is waiting: it covers any tile
-  p = q.Take(10.5);
-  EXPECT_TRUE(p.full_keyframe);
-  EXPECT_TRUE(p.keyframe_tiles.empty());
-  q.AddKeyframe({});
-  q.WholeKeyframeSent(11.0);  // the periodic keyframe answered it
-  EXPECT_FALSE(q.keyframe_waiting());
-  EXPECT_FALSE(q.Take(12.0).keyframe());
+// Asked tiles wait once however often they are asked for, and go before the rolling
+// keyframe; the rolling keyframe sends every tile in turn at one round per period.
+TEST(KeyframeScheduleTest, AskedTilesOnceAndFirstThenEveryTileInTurnAtThePace) {
+  KeyframeSchedule s(10, /*period_s=*/5.0, /*now_s=*/100.0);  // 2 tiles/s
+  EXPECT_FALSE(s.Due(100.0));
+  s.Ask({4, 2});
+  s.Ask({2, 9, 12, -1});  // 2 again; 12 and -1 are no tiles of the map
+  EXPECT_EQ(s.asked(), 3);
+  EXPECT_TRUE(s.Due(100.0));
+  std::vector<int32_t> sent;
+  while (auto t = s.Next(100.0)) sent.push_back(*t);
+  EXPECT_EQ(sent, (std::vector<int32_t>{2, 4, 9}));
+  EXPECT_EQ(s.asked_sent(), 3);
+  EXPECT_FALSE(s.Due(100.4));
+  EXPECT_EQ(s.Next(100.5), 0) << "the rolling keyframe: one tile per 0.5 s";
+  EXPECT_FALSE(s.Next(100.9));
+  EXPECT_EQ(s.Next(101.0), 1);
+  s.Ask({});  // every tile
+  EXPECT_EQ(s.asked(), 10);
+  sent.clear();
+  while (auto t = s.Next(101.0)) sent.push_back(*t);
+  EXPECT_EQ(sent.size(), 10u) << "asked tiles go without waiting for the pace";
+  sent.clear();
+  for (double t = 101.5; t <= 105.01; t += 0.5) sent.push_back(*s.Next(t));
+  EXPECT_EQ(sent, (std::vector<int32_t>{2, 3, 4, 5, 6, 7, 8, 9}));
+  EXPECT_EQ(s.rounds(), 1);
+  EXPECT_EQ(s.Next(200.0), 0);
+  EXPECT_EQ(s.Next(200.0), 1) << "at most a second of the pace after a pause";
+  EXPECT_FALSE(s.Next(200.0));
+}
+
+TEST(KeyframeScheduleTest, APeriodOfZeroSendsOnlyWhatIsAsked) {
+  KeyframeSchedule s(4, 0.0, 0.0);
+  EXPECT_FALSE(s.Next(1e6));
+  s.Ask({3});
+  EXPECT_EQ(s.Next(1e6), 3);
+  EXPECT_FALSE(s.Due(2e6));
 }
 
 }  // namespace

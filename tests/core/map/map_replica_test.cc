@@ -82,6 +82,62 @@ TEST(MapReplicaTest, SaysWhereTheMapChangedSinceItWasLastAsked) {
   EXPECT_EQ(replica.TakeChanged(), v3.geometry().full_window());
 }
 
+// The aggregator sends its keyframe tile by tile over seconds: a version can change between
+// the first tiles and the last. Tiles of the older version count once the delta between is
+// held, the delta's copy replacing a tile it changed (tile 0 here).
+TEST(MapReplicaTest, AKeyframeSentAcrossAVersionChangeBuildsTheNewerMap) {
+  const OccupancyGrid v1 = Hall(), v2 = WithPallet(v1, 20);
+  const auto old_tiles = Keyframe(v1, 1), new_tiles = Keyframe(v2, 2);
+  ASSERT_EQ(old_tiles.size(), 6u);
+  MapReplica replica;
+  EXPECT_TRUE(replica.MissingKeyframeTiles().empty()) << "nothing received: the whole map";
+  for (size_t i = 0; i < 3; ++i) ASSERT_TRUE(replica.AddKeyframeTile(old_tiles[i]).ok());
+  EXPECT_EQ(replica.MissingKeyframeTiles(), (std::vector<int32_t>{3, 4, 5}));
+  for (const DeltaTile& t : Delta(v1, v2, 1)) ASSERT_TRUE(replica.AddDeltaTile(t).ok());
+  for (size_t i = 3; i < 6; ++i) {
+    auto r = replica.AddKeyframeTile(new_tiles[i]);
+    ASSERT_TRUE(r.ok()) << r.status().ToString();
+    EXPECT_EQ(*r, i == 5);
+  }
+  EXPECT_EQ(replica.version(), 2);
+  EXPECT_TRUE(SameStates(replica.map(), v2)) << "tile 0 as the delta changed it";
+  EXPECT_FALSE(replica.NeedsKeyframe());
+}
+
+// Without the delta between, the older tiles cannot be trusted: they are dropped, asked for
+// again, and the map is built from their next copies.
+TEST(MapReplicaTest, KeyframeTilesOlderThanAMissedDeltaWaitForTheirNextCopy) {
+  const OccupancyGrid v1 = Hall(), v2 = WithPallet(v1, 20);
+  const auto old_tiles = Keyframe(v1, 1), new_tiles = Keyframe(v2, 2);
+  MapReplica replica;
+  for (size_t i = 0; i < 3; ++i) ASSERT_TRUE(replica.AddKeyframeTile(old_tiles[i]).ok());
+  for (size_t i = 3; i < 6; ++i) ASSERT_TRUE(replica.AddKeyframeTile(new_tiles[i]).ok());
+  EXPECT_FALSE(replica.has_map());
+  EXPECT_EQ(replica.MissingKeyframeTiles(), (std::vector<int32_t>{0, 1, 2}));
+  for (size_t i = 0; i < 3; ++i) ASSERT_TRUE(replica.AddKeyframeTile(new_tiles[i]).ok());
+  ASSERT_TRUE(replica.has_map());
+  EXPECT_EQ(replica.version(), 2);
+  EXPECT_TRUE(SameStates(replica.map(), v2));
+}
+
+// A delta whose last tile comes after the keyframe's last tile completes the keyframe.
+TEST(MapReplicaTest, TheDeltaAKeyframeWaitedForCompletesIt) {
+  const OccupancyGrid v1 = Hall(), v2 = WithPallet(WithPallet(v1, 20), 100);
+  const auto old_tiles = Keyframe(v1, 1), new_tiles = Keyframe(v2, 2);
+  const auto delta = Delta(v1, v2, 1);
+  ASSERT_EQ(delta.size(), 2u);
+  MapReplica replica;
+  for (size_t i = 0; i < 3; ++i) ASSERT_TRUE(replica.AddKeyframeTile(old_tiles[i]).ok());
+  ASSERT_TRUE(replica.AddDeltaTile(delta[0]).ok());
+  for (size_t i = 3; i < 6; ++i) ASSERT_TRUE(replica.AddKeyframeTile(new_tiles[i]).ok());
+  EXPECT_FALSE(replica.has_map()) << "the delta's second tile still to come";
+  auto r = replica.AddDeltaTile(delta[1]);
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_TRUE(*r);
+  EXPECT_EQ(replica.version(), 2);
+  EXPECT_TRUE(SameStates(replica.map(), v2));
+}
+
 TEST(MapReplicaTest, OutOfOrderDeltasWaitAndAGapAsksForAKeyframe) {
   const OccupancyGrid v1 = Hall(), v2 = WithPallet(v1, 20), v3 = WithPallet(v2, 100);
   MapReplica replica;

@@ -106,7 +106,7 @@ TEST_F(AgentSenderTest, WithAFleetKeyEverythingIsSignedAsTheVehicle) {
   const auth::Key key = auth::GenerateKey();
   options_.fleet_key = key;
   AgentSender& sender = Sender();
-  sender.SendMapRequest(-1, 2.0);
+  sender.SendMapRequest(-1, {3, 7}, 2.0);
   sender.SendStatus(7, "running", {{"scans", 12}}, /*authenticated=*/true, 2.0);
   ASSERT_EQ(out_.sent.size(), 2u);
   auth::Verifier verifier(key);
@@ -118,7 +118,10 @@ TEST_F(AgentSenderTest, WithAFleetKeyEverythingIsSignedAsTheVehicle) {
         << s.channel;
   }
   EXPECT_EQ(out_.sent[0].channel, "MAP_REQUEST");
-  EXPECT_EQ(Payload<fleetmap::map_request_t>(out_.sent[0]).have_version, -1);
+  const auto request = Payload<fleetmap::map_request_t>(out_.sent[0]);
+  EXPECT_EQ(request.have_version, -1);
+  EXPECT_EQ(request.tiles, (std::vector<int32_t>{3, 7}));
+  EXPECT_EQ(request.num_tiles, 2);
   EXPECT_EQ(out_.sent[1].channel, "STATUS_agent_v1");
   const auto status = Payload<fleetmap::status_t>(out_.sent[1]);
   EXPECT_EQ(status.process, "agent_v1");
@@ -144,7 +147,7 @@ TEST_F(AgentSenderTest, ARefusedMessageIsCountedAndLoggedOncePerChannel) {
   std::vector<core::TempMapTile> tiles(3);
   for (int i = 0; i < 3; ++i) tiles[i].sequence = 5, tiles[i].index = i, tiles[i].count = 3;
   sender.SendTiles(tiles, 1.0);
-  sender.SendMapRequest(4, 1.0);
+  sender.SendMapRequest(4, {}, 1.0);
   EXPECT_EQ(out_.sent.size(), 4u);  // each was tried
   EXPECT_EQ(out_.sent[0].channel, "TEMPMAP_v1");
   EXPECT_EQ(counters_.publish_failures, 4);

@@ -12,14 +12,20 @@ std::vector<core::KeyframeTile> Keyframe(const core::OccupancyGrid& g, int32_t v
   return testing::KeyframeTiles(g, version);
 }
 
-TEST(MapFollowerTest, WithoutAMapAsksOncePerPeriodUntilAKeyframeIsComplete) {
+// Without a map it asks once per period; while keyframe tiles come the answer is arriving and
+// it waits; when they stop, it asks again for the tiles it lacks, not the whole map.
+TEST(MapFollowerTest, WithoutAMapAsksOncePerPeriodForWhatItLacksWhileNothingArrives) {
   MapFollower f({});
   EXPECT_EQ(f.RequestDue(10.0), -1);
+  EXPECT_TRUE(f.request_tiles().empty()) << "the whole map";
   EXPECT_FALSE(f.RequestDue(10.5));
   EXPECT_EQ(f.RequestDue(11.0), -1);
   const auto key = Keyframe(sim::testing::Room(), 4);
+  ASSERT_GE(key.size(), 2u);
   for (size_t i = 0; i + 1 < key.size(); ++i) EXPECT_FALSE(*f.OnKeyframeTile(key[i]));
-  EXPECT_EQ(f.RequestDue(12.0), -1);  // one tile still missing
+  EXPECT_FALSE(f.RequestDue(12.0)) << "tiles came in the last period: the answer is arriving";
+  EXPECT_EQ(f.RequestDue(13.0), -1) << "none since: one tile still missing";
+  EXPECT_EQ(f.request_tiles(), (std::vector<int32_t>{key.back().index}));
   EXPECT_TRUE(*f.OnKeyframeTile(key.back()));
   EXPECT_EQ(f.version(), 4);
   for (double t = 13.0; t < 30.0; t += 0.25) EXPECT_FALSE(f.RequestDue(t));
