@@ -57,6 +57,16 @@ else
   echo "# figures" >out/bench/aggregator_scaling_bench.txt
 fi
 
+# The downlink on generated halls of 14M and 44M cells: three vehicles joining without a map.
+echo "== downlink_scale_bench" >&2
+if scripts/setup_multicast.sh >/dev/null 2>&1; then
+  { echo "# figures"; bench/downlink_scale_bench.sh build-release | grep -E '^scale\.'; } \
+    >out/bench/downlink_scale_bench.txt || failed+=(downlink_scale_bench)
+else
+  echo "downlink_scale_bench: skipped: no multicast on loopback (scripts/setup_multicast.sh needs root)" >&2
+  echo "# figures" >out/bench/downlink_scale_bench.txt
+fi
+
 # MRPT's icp-slam against our scan matcher on the intel and aces logs.
 echo "== mrpt_compare" >&2
 if command -v icp-slam >/dev/null && [[ -x build-release/bin/fleetmap-bench-carmen2rawlog ]]; then

@@ -34,17 +34,28 @@ bool KeyframeSchedule::Due(double now_s) const {
 }
 
 std::optional<int32_t> KeyframeSchedule::Next(double now_s) {
-  credit_ = CreditAt(now_s);
-  last_s_ = std::max(last_s_, now_s);
-  if (asked_count_ > 0) {
-    while (!asked_[asked_cursor_]) asked_cursor_ = (asked_cursor_ + 1) % num_tiles_;
-    const int32_t tile = asked_cursor_;
-    asked_[tile] = false;
-    --asked_count_;
-    ++asked_sent_;
-    asked_cursor_ = (asked_cursor_ + 1) % num_tiles_;
+  if (std::optional<int32_t> tile = NextAsked()) {
+    credit_ = CreditAt(now_s);  // the rolling pace goes on meanwhile
+    last_s_ = std::max(last_s_, now_s);
     return tile;
   }
+  return NextRolling(now_s);
+}
+
+std::optional<int32_t> KeyframeSchedule::NextAsked() {
+  if (asked_count_ == 0) return std::nullopt;
+  while (!asked_[asked_cursor_]) asked_cursor_ = (asked_cursor_ + 1) % num_tiles_;
+  const int32_t tile = asked_cursor_;
+  asked_[tile] = false;
+  --asked_count_;
+  ++asked_sent_;
+  asked_cursor_ = (asked_cursor_ + 1) % num_tiles_;
+  return tile;
+}
+
+std::optional<int32_t> KeyframeSchedule::NextRolling(double now_s) {
+  credit_ = CreditAt(now_s);
+  last_s_ = std::max(last_s_, now_s);
   if (num_tiles_ == 0 || credit_ < 1.0) return std::nullopt;
   credit_ -= 1.0;
   const int32_t tile = rolling_cursor_;

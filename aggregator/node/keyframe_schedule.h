@@ -27,6 +27,9 @@ class KeyframeSchedule {
   // the next rolling one when the round's pace allows; nothing when neither is due. Each tile
   // returned counts as sent.
   std::optional<int32_t> Next(double now_s);
+  // Only an asked tile, or only a rolling one (when the caller limits the rolling keyframe).
+  std::optional<int32_t> NextAsked();
+  std::optional<int32_t> NextRolling(double now_s);
   // Whether Next(now_s) would return a tile (changes nothing).
   bool Due(double now_s) const;
 
@@ -38,7 +41,7 @@ class KeyframeSchedule {
   double CreditAt(double now_s) const;
 
   int32_t num_tiles_;
-  double tiles_per_s_;  // the rolling pace; 0: none
+  double tiles_per_s_;   // the rolling pace; 0: none
   double credit_ = 0.0;  // rolling tiles that may go at last_s_
   double last_s_;
   std::vector<bool> asked_;

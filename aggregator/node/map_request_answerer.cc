@@ -7,6 +7,19 @@
 #include "lcmtypes/convert.h"
 
 namespace fleetmap::aggregator::node {
+namespace {
+
+// The rolling keyframe's bytes: at most keyframe_share of the downlink's budget.
+core::PacerOptions RollingShare(const AggregatorNodeOptions& options) {
+  core::PacerOptions share;
+  share.rate_per_s = 1e9;  // no limit in messages: the downlink's own pacer has one
+  share.burst = 1e9;
+  share.bytes_per_s = options.keyframe_share * options.downlink_bytes_per_s;
+  share.burst_bytes = options.max_message_bytes;
+  return share;
+}
+
+}  // namespace
 
 MapRequestAnswerer::MapRequestAnswerer(const Aggregator& aggregator,
                                        const AggregatorNodeOptions& options,
@@ -19,7 +32,8 @@ MapRequestAnswerer::MapRequestAnswerer(const Aggregator& aggregator,
                                  aggregator.options().store.tiles.tile_size_cells)
                     .num_tiles(),
                 options_.keyframe_period_s, now_s),
-      next_candidates_s_(now_s + options_.keyframe_period_s) {}
+      next_candidates_s_(now_s + options_.keyframe_period_s),
+      rolling_share_(RollingShare(options_)) {}
 
 void MapRequestAnswerer::OnRequest(const void* data, int size) {
   auto msg = lcmtypes::Decode<fleetmap::map_request_t>(data, size);
@@ -95,10 +109,14 @@ void MapRequestAnswerer::SendDeltas(double now_s) {
 void MapRequestAnswerer::SendKeyframeTiles(double now_s) {
   if (!publisher_.enabled()) return;
   while (publisher_.room_bytes() > 0) {
-    const std::optional<int32_t> tile = schedule_.Next(now_s);
+    std::optional<int32_t> tile = schedule_.NextAsked();
+    const bool rolling = !tile;
+    if (rolling && rolling_share_.MaySend(now_s)) tile = schedule_.NextRolling(now_s);
     if (!tile) break;
     const std::vector<int32_t> only = {*tile};
+    const int64_t before = report_.counters.bytes_sent;
     publisher_.SendKeyframe(&only, now_s);
+    if (rolling) rolling_share_.Sent(0, static_cast<size_t>(report_.counters.bytes_sent - before));
   }
   report_.counters.keyframe_rounds = schedule_.rounds();
   report_.counters.asked_tiles_sent = schedule_.asked_sent();

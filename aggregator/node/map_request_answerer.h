@@ -6,8 +6,10 @@
 // deltas once from the oldest version asked for, each keyframe tile once however many asked
 // (keyframe_schedule.h). Unasked, a rolling keyframe sends every tile in turn, one round per
 // keyframe_period_s, and the candidates go out every keyframe_period_s, for vehicles that
-// missed everything. Keyframe tiles can wait: they go only while the downlink has room
-// (MapPublisher::room_bytes), after acknowledgements and deltas, which never wait for them.
+// missed everything; it takes at most keyframe_share of the downlink's budget, so that on a
+// large map a round lasts longer rather than keeping the channel full. Keyframe tiles can
+// wait: they go only while the downlink has room (MapPublisher::room_bytes), after
+// acknowledgements and deltas, which never wait for them; asked tiles before rolling ones.
 // Owns the waiting requests and the keyframe schedule; reads the current map.
 #pragma once
 
@@ -18,6 +20,7 @@
 #include "aggregator/node/map_publisher.h"
 #include "aggregator/node/node_options.h"
 #include "aggregator/node/node_reporting.h"
+#include "core/codec/send_pacer.h"
 #include "fleetmap/map_request_t.hpp"
 
 namespace fleetmap::aggregator::node {
@@ -56,6 +59,7 @@ class MapRequestAnswerer {
   std::optional<uint64_t> deltas_from_;  // resend every version from here to the current
   KeyframeSchedule schedule_;
   double next_candidates_s_;
+  core::SendPacer rolling_share_;  // the rolling keyframe's share of the budget
 };
 
 }  // namespace fleetmap::aggregator::node

@@ -38,18 +38,19 @@ core::Status Read(const YamlReader& r, const YAML::Node& parent, const std::stri
 }
 
 core::Status ReadNode(const YamlReader& r, const YAML::Node& n, AggregatorNodeOptions& o) {
-  FLEETMAP_RETURN_IF_ERROR(
-      OnlyKeys(r, n, "node",
-               {"pending_ack_interval_s", "keyframe_period_s", "downlink_bytes_per_s",
-                "downlink_messages_per_s", "status_period_s", "pending_map_timeout_s",
-                "max_message_bytes", "max_report_matches", "max_remembered_rejections",
-                "max_retry_maps", "max_held_maps", "recovery_request_s"}));
+  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(
+      r, n, "node",
+      {"pending_ack_interval_s", "keyframe_period_s", "downlink_bytes_per_s",
+       "downlink_messages_per_s", "keyframe_share", "status_period_s", "pending_map_timeout_s",
+       "max_message_bytes", "max_report_matches", "max_remembered_rejections", "max_retry_maps",
+       "max_held_maps", "recovery_request_s"}));
   if (!n) return core::OkStatus();
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "pending_ack_interval_s", o.pending_ack_interval_s));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "keyframe_period_s", o.keyframe_period_s));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "downlink_bytes_per_s", o.downlink_bytes_per_s));
   FLEETMAP_RETURN_IF_ERROR(
       Read(r, n, "node", "downlink_messages_per_s", o.downlink_messages_per_s));
+  FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "keyframe_share", o.keyframe_share));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "status_period_s", o.status_period_s));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "pending_map_timeout_s", o.pending_map_timeout_s));
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, "node", "max_message_bytes", o.max_message_bytes));

@@ -17,6 +17,8 @@ core::Status AggregatorNodeOptions::Validate() const {
     return core::InvalidArgument("node.downlink_bytes_per_s must be > 0");
   if (!Positive(downlink_messages_per_s))
     return core::InvalidArgument("node.downlink_messages_per_s must be > 0");
+  if (!(keyframe_share > 0.0 && keyframe_share <= 1.0))
+    return core::InvalidArgument("node.keyframe_share must be > 0 and <= 1");
   if (!(std::isfinite(keyframe_period_s) && keyframe_period_s >= 0.0))
     return core::InvalidArgument("node.keyframe_period_s must be >= 0");
   if (!Positive(status_period_s)) return core::InvalidArgument("node.status_period_s must be > 0");

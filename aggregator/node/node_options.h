@@ -28,6 +28,11 @@ struct AggregatorNodeOptions {
   double downlink_bytes_per_s = 200000.0;
   // ... and messages/s > 0: tiles are small, and slow readers (lcm-logger) drop bursts.
   double downlink_messages_per_s = 2000.0;
+  // The share of downlink_bytes_per_s the rolling keyframe may take, 0 < share <= 1: on a
+  // large map its round then lasts longer than keyframe_period_s (a 40M-cell hall's 2 MB at
+  // 50 kB/s: 40 s) rather than keeping the channel full with tiles nobody asked for. Tiles
+  // vehicles ask for are not limited by it.
+  double keyframe_share = 0.25;
   double status_period_s = 1.0;  // STATUS_aggregator period, s > 0
   // An incomplete map that received no tile for this long is dropped, s > 0. A live vehicle
   // resends at least every max_resend_s (16 s by default).

@@ -67,11 +67,12 @@ Result<bool> MapReplica::AddKeyframeTile(const KeyframeTile& tile) {
     keyframe_header_ = tile;
     keyframe_header_->frame.clear();
   }
+  const bool newer = tile.version > keyframe_header_->version;
   keyframe_header_->version = std::max(keyframe_header_->version, tile.version);
   const auto held = keyframe_tiles_.find(tile.index);
   if (held == keyframe_tiles_.end() || held->second.version <= tile.version)
     keyframe_tiles_[tile.index] = HeldTile{tile.version, EncodedTile{tile.tile, tile.frame}};
-  if (!map_) {
+  if (!map_ && newer) {
     // Tiles are cut from the aggregator's current map when sent: none still to come is older
     // than those held, so older deltas can never be needed.
     int32_t oldest = keyframe_header_->version;

@@ -9,6 +9,7 @@
 
 #include "core/command_line.h"
 #include "core/map/map_io.h"
+#include "ops/lan/ack_delays.h"
 #include "ops/lan/change_cost.h"
 #include "ops/lan/codec_sweep.h"
 #include "ops/lan/lan_log.h"
@@ -24,7 +25,7 @@ int Fail(const core::Status& s) {
   return 1;
 }
 
-// status, codec, changes: figures of the recorded LCM logs.
+// status, codec, changes, acks: figures of the recorded LCM logs.
 int LogCommand(const std::string& command, const std::vector<std::string>& logs,
                int64_t until_utime) {
   auto messages = ops::lan::ReadLogs(logs);
@@ -37,6 +38,8 @@ int LogCommand(const std::string& command, const std::vector<std::string>& logs,
         ops::lan::RecodeMapMessages(*messages, ops::lan::DefaultCodecVariants()));
   if (command == "changes")
     lines = ops::lan::ChangeCostFigureLines(ops::lan::MeasureChangeCost(*messages));
+  if (command == "acks")
+    lines = ops::lan::AckDelayFigureLines(ops::lan::MeasureAckDelays(*messages));
   std::fputs(lines.c_str(), stdout);
   return 0;
 }
@@ -90,7 +93,12 @@ int main(int argc, char** argv) {
       "changes",
       "the cost of one map change on the downlink: tile delta, whole keyframe and a ROS "
       "nav_msgs/OccupancyGrid of the whole map: `changes.*` lines");
-  for (CLI::App* command : {status, codec, changes})
+  CLI::App* acks = app.add_subcommand(
+      "acks",
+      "how long vehicles waited for the answer to a temporary map: from its last TEMPMAP_<id> "
+      "tile to its final TEMPMAP_ACK, in uplink and downlink logs recorded on one host: "
+      "`acks.*` lines");
+  for (CLI::App* command : {status, codec, changes, acks})
     command->add_option("LOG", logs, "LCM logs")->required();
   CLI::App* resample = app.add_subcommand(
       "resample",

@@ -98,11 +98,12 @@ core::Status ReadLinks(const YamlReader& r, const YAML::Node& root, AgentConfig&
     FLEETMAP_READ_AS(r, std::string, u, "downlink", "urls.", c.urls.downlink);
   }
   if (const YAML::Node m = Section(root, "map_updates")) {
-    FLEETMAP_RETURN_IF_ERROR(
-        CheckKeys(r, m, "map_updates", {"tile_size_cells", "max_buffered_versions"}));
+    FLEETMAP_RETURN_IF_ERROR(CheckKeys(
+        r, m, "map_updates", {"tile_size_cells", "max_buffered_versions", "max_request_tiles"}));
     FLEETMAP_READ_AS(r, int, m, "tile_size_cells", "map_updates.", c.node.map.tile_size_cells);
     FLEETMAP_READ_AS(r, int, m, "max_buffered_versions", "map_updates.",
                      c.node.map.max_buffered_versions);
+    FLEETMAP_READ_AS(r, int, m, "max_request_tiles", "map_updates.", c.node.map.max_request_tiles);
   }
   return ReadChoice<Link>(r, root, "pose_link", "pose_link",
                           {{"uplink", Link::kUplink}, {"sensor", Link::kSensor}}, c.node.pose_link);

@@ -10,6 +10,7 @@ core::Status MapFollowerOptions::Validate() const {
     return core::InvalidArgument("rates.map_request_period_s must be > 0");
   if (max_buffered_versions < 1)
     return core::InvalidArgument("map.max_buffered_versions must be >= 1");
+  if (max_request_tiles < 0) return core::InvalidArgument("map.max_request_tiles must be >= 0");
   return core::OkStatus();
 }
 
@@ -92,19 +93,20 @@ std::optional<int32_t> MapFollower::RequestDue(double now_s) {
   // A keyframe is a hundred tiles: ask once per period, whatever triggered it.
   if (now_s - last_request_s_ < options_.request_period_s) return std::nullopt;
   last_request_s_ = now_s;
-  // Keyframe tiles came since the last request: the answer (or the rolling keyframe) is
-  // arriving, and asking again would only queue the same tiles once more.
-  const bool arriving = asked_once_ && !replica_.has_map() &&
+  std::vector<int32_t> missing;
+  if (!replica_.has_map()) missing = replica_.MissingKeyframeTiles();
+  const bool listed =
+      !missing.empty() && missing.size() <= static_cast<size_t>(options_.max_request_tiles);
+  // The whole map asked for and keyframe tiles came since: the answer (or the rolling
+  // keyframe) is arriving, and asking again would queue every tile once more.
+  const bool arriving = asked_once_ && !replica_.has_map() && !listed &&
                         counters_.keyframe_tiles > keyframe_tiles_at_last_request_;
   keyframe_tiles_at_last_request_ = counters_.keyframe_tiles;
   if (arriving) return std::nullopt;
   asked_once_ = true;
   ++counters_.requests;
   request_tiles_.clear();
-  if (!replica_.has_map()) {
-    std::vector<int32_t> missing = replica_.MissingKeyframeTiles();
-    if (missing.size() <= kMaxRequestTiles) request_tiles_ = std::move(missing);
-  }
+  if (listed) request_tiles_ = std::move(missing);
   return replica_.has_map() ? replica_.version() : -1;
 }
 

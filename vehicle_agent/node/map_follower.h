@@ -2,10 +2,12 @@
 // of the aggregator's current map (core::MapReplica) and decides when to send MAP_REQUEST.
 //   - seeded with the static map file (version 0 at the aggregator): one request with
 //     have_version 0 at start, so that the aggregator resends the deltas merged since;
-//   - without a map: a request with have_version -1 naming the keyframe tiles it lacks (all
-//     of them before the first tile), again only after a whole request period in which no
-//     keyframe tile came: while tiles come, the answer is arriving (the aggregator sends
-//     within its downlink's byte budget, so a large map takes seconds);
+//   - without a map: a request with have_version -1 naming the keyframe tiles it lacks, once
+//     per period while they are few enough to list (the aggregator keeps each asked tile
+//     once, so asking again costs only what was lost); when more (the whole map), again only
+//     after a period in which no keyframe tile came: while tiles come, the answer is arriving
+//     (the aggregator sends within its downlink's byte budget, so a large map takes seconds),
+//     and asking for the whole map again would send again what already arrived;
 //   - a version gap (a delta for a version after one we missed), or the aggregator's
 //     heartbeat showing a newer version for a whole period: a request with our version;
 //   - the heartbeat showing an older version than ours for two periods: the aggregator
@@ -24,14 +26,13 @@
 
 namespace fleetmap::vehicle_agent::node {
 
-// A request names at most this many tiles (4 bytes each, in a message of a few kilobytes);
-// a vehicle lacking more asks for the whole map.
-constexpr size_t kMaxRequestTiles = 2048;
-
 struct MapFollowerOptions {
   int tile_size_cells = 64;        // the tiling of the aggregator's deltas, cells, >= 4
   double request_period_s = 1.0;   // at most one MAP_REQUEST per period, s, > 0
   int max_buffered_versions = 16;  // deltas held while waiting for a missed one, >= 1
+  // A request names at most this many tiles (4 bytes each: 8 KB), >= 0; a vehicle lacking
+  // more asks for the whole map.
+  int max_request_tiles = 2048;
   core::Status Validate() const;
 };
 

@@ -21,7 +21,13 @@ void MapUpdates::OnDeltaTile(const core::DeltaTile& tile) {
 }
 
 void MapUpdates::OnKeyframeTile(const core::KeyframeTile& tile) {
-  Tile(lcmtypes::kMapKeyframeChannel, follower_.OnKeyframeTile(tile));
+  const core::Result<bool> added = follower_.OnKeyframeTile(tile);
+  // A keyframe completes rarely (no map yet, a gap) and is worth a line: a large map takes
+  // seconds to arrive, and more to be put in use.
+  if (added.ok() && *added)
+    log_->Info("map version " + std::to_string(follower_.version()) + " held (" +
+               std::to_string(tile.count) + " keyframe tiles)");
+  Tile(lcmtypes::kMapKeyframeChannel, added);
 }
 
 void MapUpdates::Tile(const char* channel, const core::Result<bool>& added) {

@@ -18,6 +18,7 @@ using testing::Encode;
 using testing::KeyOf;
 using testing::NodeParts;
 using testing::PalletMaps;
+using testing::SentMessage;
 using testing::TileCount;
 
 constexpr double kStampS = 1.7e9;
@@ -163,6 +164,33 @@ TEST(MapRequestAnswererTest, TheRollingKeyframeSendsEveryTileInTurnOnceAPeriod) 
   EXPECT_LE(most_in_one_tick, static_cast<size_t>(count / 10 + 1));
   EXPECT_EQ(a.parts.counters.candidate_sets_sent, 1);
   EXPECT_EQ(a.parts.counters.asked_tiles_sent, 0);
+}
+
+// On a large map the rolling keyframe would fill the channel: it takes at most its share of
+// the budget (its round lasts longer), while tiles asked for are not held back by it.
+TEST(MapRequestAnswererTest, TheRollingKeyframeKeepsToItsShareOfTheBudgetAskedTilesDoNot) {
+  AggregatorNodeOptions options;
+  options.keyframe_period_s = 0.5;  // would be every tile twice a second
+  options.downlink_bytes_per_s = 2000.0;
+  options.keyframe_share = 0.5;      // 1000 B/s
+  options.max_message_bytes = 1024;  // the share's burst
+  Answering a(options);
+  const auto keyframe_bytes = [&a] {
+    size_t bytes = 0;
+    for (const SentMessage& m : a.parts.out.sent)
+      if (m.channel == lcmtypes::kMapKeyframeChannel) bytes += m.bytes.size();
+    return bytes;
+  };
+  for (int tick = 1; tick <= 200; ++tick) a.answerer.Tick(0.1 * tick);  // 20 s
+  EXPECT_GT(keyframe_bytes(), 15000u);
+  EXPECT_LE(keyframe_bytes(), 1024u + 20 * 1000u + 1000u) << "one message past the share at most";
+  EXPECT_LE(a.parts.counters.keyframe_rounds, 4) << "far fewer than the 40 rounds asked for";
+  const size_t rolling = a.parts.out.Count(lcmtypes::kMapKeyframeChannel);
+  a.Ask(-1);
+  a.answerer.Tick(20.05);
+  const int32_t count =
+      a.parts.out.Decoded<fleetmap::map_keyframe_t>(lcmtypes::kMapKeyframeChannel)[0].tile_count;
+  EXPECT_GE(a.parts.out.Count(lcmtypes::kMapKeyframeChannel), rolling + count);
 }
 
 TEST(MapRequestAnswererTest, APeriodOfZeroSendsNoKeyframeUnasked) {

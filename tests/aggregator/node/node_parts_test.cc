@@ -36,6 +36,7 @@ TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
   EXPECT_EQ(n.keyframe_period_s, nd.keyframe_period_s);
   EXPECT_EQ(n.downlink_bytes_per_s, nd.downlink_bytes_per_s);
   EXPECT_EQ(n.downlink_messages_per_s, nd.downlink_messages_per_s);
+  EXPECT_EQ(n.keyframe_share, nd.keyframe_share);
   EXPECT_EQ(n.status_period_s, nd.status_period_s);
   EXPECT_EQ(n.pending_map_timeout_s, nd.pending_map_timeout_s);
   EXPECT_EQ(n.max_message_bytes, nd.max_message_bytes);

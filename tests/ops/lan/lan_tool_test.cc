@@ -10,7 +10,10 @@
 
 #include "core/codec/map_codec.h"
 #include "fleetmap/status_t.hpp"
+#include "fleetmap/tempmap_ack_t.hpp"
+#include "fleetmap/tempmap_tile_t.hpp"
 #include "lcmtypes/transport_convert.h"
+#include "ops/lan/ack_delays.h"
 #include "ops/lan/change_cost.h"
 #include "ops/lan/codec_sweep.h"
 #include "ops/lan/lan_log.h"
@@ -147,6 +150,46 @@ TEST(ChangeCostTest, DeltaOnceKeyframeWholeAndAnOccupancyGridOfTheMap) {
   EXPECT_DOUBLE_EQ(c.keyframe_bytes, double(log[3].data.size() + log[4].data.size()));
   EXPECT_EQ(c.map_cells, 64 * 128);
   EXPECT_EQ(c.occupancy_grid_bytes, 64 * 128 + kOccupancyGridHeaderBytes);
+}
+
+fleetmap::tempmap_tile_t Tile(const std::string& vehicle, int32_t sequence) {
+  fleetmap::tempmap_tile_t t{};
+  t.vehicle_id = vehicle;
+  t.tempmap_seq = sequence;
+  return t;
+}
+
+fleetmap::tempmap_ack_t Ack(const std::string& vehicle, int32_t sequence, int8_t outcome) {
+  fleetmap::tempmap_ack_t a{};
+  a.vehicle_id = vehicle;
+  a.tempmap_seq = sequence;
+  a.outcome = outcome;
+  return a;
+}
+
+// From each map's last tile to its final ack; PENDING acks are not answers; an ack whose map
+// was never logged is counted, not timed.
+TEST(AckDelaysTest, FromAMapsLastTileToItsFinalAck) {
+  using fleetmap::tempmap_ack_t;
+  const std::vector<LogMessage> log = {
+      Message(1'000'000, "TEMPMAP_v1", Tile("v1", 1)),
+      Message(2'000'000, "TEMPMAP_v1", Tile("v1", 1)),
+      Message(2'500'000, "TEMPMAP_ACK", Ack("v1", 1, tempmap_ack_t::PENDING)),
+      Message(3'000'000, "TEMPMAP_ACK", Ack("v1", 1, tempmap_ack_t::MERGED)),
+      Message(3'100'000, "TEMPMAP_ACK", Ack("v2", 7, tempmap_ack_t::REJECTED)),
+      Message(4'000'000, "TEMPMAP_v1", Tile("v1", 2)),
+      Message(4'200'000, "TEMPMAP_ACK", Ack("v1", 2, tempmap_ack_t::DUPLICATE)),
+  };
+  const AckDelays d = MeasureAckDelays(log);
+  ASSERT_EQ(d.delays_s.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.delays_s[0], 1.0);
+  EXPECT_NEAR(d.delays_s[1], 0.2, 1e-9);
+  EXPECT_EQ(d.untimed, 1);
+  const std::string lines = AckDelayFigureLines(d);
+  EXPECT_NE(lines.find("acks.count 2 count\n"), std::string::npos) << lines;
+  EXPECT_NE(lines.find("acks.delay_s.median 0.2 s\n"), std::string::npos) << lines;
+  EXPECT_NE(lines.find("acks.delay_s.p95 1 s\n"), std::string::npos) << lines;
+  EXPECT_EQ(AckDelayFigureLines({}).find("delay_s"), std::string::npos) << "no figure over nothing";
 }
 
 TEST(MapResampleTest, OccupiedWinsThenHalfFreeIsFree) {

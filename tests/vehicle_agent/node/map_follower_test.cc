@@ -12,9 +12,8 @@ std::vector<core::KeyframeTile> Keyframe(const core::OccupancyGrid& g, int32_t v
   return testing::KeyframeTiles(g, version);
 }
 
-// Without a map it asks once per period; while keyframe tiles come the answer is arriving and
-// it waits; when they stop, it asks again for the tiles it lacks, not the whole map.
-TEST(MapFollowerTest, WithoutAMapAsksOncePerPeriodForWhatItLacksWhileNothingArrives) {
+// Without a map it asks once per period, for the whole map, then for the tiles it lacks.
+TEST(MapFollowerTest, WithoutAMapAsksOncePerPeriodForWhatItLacks) {
   MapFollower f({});
   EXPECT_EQ(f.RequestDue(10.0), -1);
   EXPECT_TRUE(f.request_tiles().empty()) << "the whole map";
@@ -23,14 +22,32 @@ TEST(MapFollowerTest, WithoutAMapAsksOncePerPeriodForWhatItLacksWhileNothingArri
   const auto key = Keyframe(sim::testing::Room(), 4);
   ASSERT_GE(key.size(), 2u);
   for (size_t i = 0; i + 1 < key.size(); ++i) EXPECT_FALSE(*f.OnKeyframeTile(key[i]));
-  EXPECT_FALSE(f.RequestDue(12.0)) << "tiles came in the last period: the answer is arriving";
-  EXPECT_EQ(f.RequestDue(13.0), -1) << "none since: one tile still missing";
+  EXPECT_EQ(f.RequestDue(12.0), -1) << "one tile still missing";
   EXPECT_EQ(f.request_tiles(), (std::vector<int32_t>{key.back().index}));
   EXPECT_TRUE(*f.OnKeyframeTile(key.back()));
   EXPECT_EQ(f.version(), 4);
   for (double t = 13.0; t < 30.0; t += 0.25) EXPECT_FALSE(f.RequestDue(t));
   EXPECT_EQ(f.counters().requests, 3);
   EXPECT_EQ(f.counters().versions_applied, 1);
+}
+
+// Lacking more tiles than a request can list, it asks for the whole map again only after a
+// period in which no tile came: while they come, the answer is arriving.
+TEST(MapFollowerTest, LackingTooManyToListItWaitsWhileTilesArrive) {
+  MapFollowerOptions options;
+  options.max_request_tiles = 1;
+  MapFollower f(options);
+  EXPECT_EQ(f.RequestDue(10.0), -1);
+  const auto key = Keyframe(sim::testing::Room(), 4);
+  ASSERT_GE(key.size(), 3u);
+  for (size_t i = 0; i + 2 < key.size(); ++i) EXPECT_FALSE(*f.OnKeyframeTile(key[i]));
+  EXPECT_FALSE(f.RequestDue(11.0)) << "tiles came in the last period";
+  EXPECT_EQ(f.RequestDue(12.0), -1) << "none since: two tiles still missing";
+  EXPECT_TRUE(f.request_tiles().empty()) << "too many to list: the whole map";
+  EXPECT_FALSE(*f.OnKeyframeTile(key[key.size() - 2]));
+  EXPECT_EQ(f.RequestDue(13.0), -1) << "one left: listed, whatever came";
+  EXPECT_EQ(f.request_tiles(), (std::vector<int32_t>{key.back().index}));
+  EXPECT_EQ(f.counters().requests, 3);
 }
 
 TEST(MapFollowerTest, SeededAsksOnceToCatchUpThenOnlyOnGapsOrAHeartbeatAhead) {

@@ -40,15 +40,18 @@ TEST_F(MapUpdatesTest, AVersionGoesToThePipelineOnceItsTilesAreInAndOnlyTheFirst
   EXPECT_FALSE(maps_.Apply(pipeline_));  // one tile still missing
   EXPECT_EQ(pipeline_.localizer().map_version(), -1);
 
+  EXPECT_TRUE(infos_.empty());
   maps_.OnKeyframeTile(key.back());
+  ASSERT_EQ(infos_.size(), 1u);
+  EXPECT_EQ(infos_[0], "map version 4 held (" + std::to_string(key.size()) + " keyframe tiles)");
   EXPECT_TRUE(maps_.Apply(pipeline_));  // the first map
   EXPECT_TRUE(maps_.in_use());
   EXPECT_EQ(maps_.version_in_use(), 4);
   EXPECT_EQ(pipeline_.localizer().map_version(), 4);
-  ASSERT_EQ(infos_.size(), 1u);
-  EXPECT_EQ(infos_[0], "map version 4 in use");
+  ASSERT_EQ(infos_.size(), 2u);
+  EXPECT_EQ(infos_[1], "map version 4 in use");
   EXPECT_FALSE(maps_.Apply(pipeline_));  // handed over once
-  EXPECT_EQ(infos_.size(), 1u);
+  EXPECT_EQ(infos_.size(), 2u);
 
   maps_.OnDeltaTile({4, 0, 0, {}, {}});  // version 5 changed no cell
   EXPECT_FALSE(maps_.Apply(pipeline_));  // a later map: not the first
