@@ -89,25 +89,30 @@ double MeanParticles() {
   return sum / static_cast<double>(Steps().size());
 }
 
-// A new map version on a building of 12M cells (200 x 150 m at 5 cm: walls and rack rows 1.2 m
-// deep every 4.2 m), with a pallet (1.2 x 0.8 m) put down or taken away: argument 0 takes the
-// whole map in afresh (SetMap), 1 only around the pallet's tile (UpdateMap, as the agent does
-// with a delta).
+// A building of width x height cells at 5 cm: walls and rack rows 1.2 m deep every 4.2 m.
+core::OccupancyGrid RackedHall(int width, int height) {
+  core::OccupancyGrid g(core::GridGeometry(0.05, width, height));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const bool wall = x < 4 || y < 4 || x >= width - 4 || y >= height - 4;
+      const bool rack = y % 84 >= 60 && x >= 100 && x < width - 100 && x % 600 >= 80;
+      g.SetState({x, y}, wall || rack ? core::CellState::kOccupied : core::CellState::kFree);
+    }
+  return g;
+}
+
+// A new map version on a building of 12M cells (argument 1 = 0: 200 x 150 m) or 44M cells (1:
+// 400 x 275 m), with a pallet (1.2 x 0.8 m) put down or taken away in its middle: argument 0 =
+// 0 takes the whole map in afresh (SetMap), 1 only around the pallet's tile (UpdateMap, as the
+// agent does with a delta).
 void BM_MapSwap(benchmark::State& state) {
-  static const core::OccupancyGrid hall = [] {
-    core::OccupancyGrid g(core::GridGeometry(0.05, 4000, 3000));
-    for (int y = 0; y < 3000; ++y)
-      for (int x = 0; x < 4000; ++x) {
-        const bool wall = x < 4 || y < 4 || x >= 3996 || y >= 2996;
-        const bool rack = y % 84 >= 60 && x >= 100 && x < 3900 && x % 600 >= 80;
-        g.SetState({x, y}, wall || rack ? core::CellState::kOccupied : core::CellState::kFree);
-      }
-    return g;
-  }();
+  static const core::OccupancyGrid halls[] = {RackedHall(4000, 3000), RackedHall(8000, 5500)};
+  const core::OccupancyGrid& hall = halls[state.range(1)];
   core::OccupancyGrid pallet = hall;
-  const core::CellWindow tile{1984, 1472, 64, 64};
-  for (int y = 1490; y < 1506; ++y)
-    for (int x = 1990; x < 2014; ++x) pallet.SetState({x, y}, core::CellState::kOccupied);
+  const int cx = hall.geometry().width() / 2 / 64 * 64, cy = hall.geometry().height() / 2 / 64 * 64;
+  const core::CellWindow tile{cx, cy, 64, 64};
+  for (int y = cy + 18; y < cy + 34; ++y)
+    for (int x = cx + 6; x < cx + 30; ++x) pallet.SetState({x, y}, core::CellState::kOccupied);
   Localizer localizer{LocalizerOptions()};
   (void)localizer.SetMap(hall, 1);
   int32_t version = 1;
@@ -117,7 +122,7 @@ void BM_MapSwap(benchmark::State& state) {
                                                  : localizer.SetMap(map, version));
   }
 }
-BENCHMARK(BM_MapSwap)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MapSwap)->Args({0, 0})->Args({1, 0})->Args({1, 1})->Unit(benchmark::kMillisecond);
 
 void BM_Divergence(benchmark::State& state) {
   DivergenceDetector detector{DivergenceOptions()};
@@ -144,7 +149,8 @@ int main(int argc, char** argv) {
   TimeFigure("BM_MclUpdate/1", "agent.mcl_update_us", "us");
   TimeFigure("BM_MclUpdate/0", "agent.mcl_update_default_us", "us");
   TimeFigure("BM_Divergence", "agent.divergence_us", "us");
-  TimeFigure("BM_MapSwap/0", "agent.map_swap_whole_12m_cells_ms", "ms");
-  TimeFigure("BM_MapSwap/1", "agent.map_swap_delta_12m_cells_ms", "ms");
+  TimeFigure("BM_MapSwap/0/0", "agent.map_swap_whole_12m_cells_ms", "ms");
+  TimeFigure("BM_MapSwap/1/0", "agent.map_swap_delta_12m_cells_ms", "ms");
+  TimeFigure("BM_MapSwap/1/1", "agent.map_swap_delta_44m_cells_ms", "ms");
   return RunBenchmarksAndPrintFigures(argc, argv);
 }

@@ -66,9 +66,9 @@ class AggregatorNode {
   void OnMessage(const std::string& channel, const void* data, int size, double now_s);
   // Timers: PENDING acknowledgements, answers to MAP_REQUEST, the rolling keyframe, STATUS,
   // dropping incomplete maps that went silent. Call it often (every 100 ms or so), and within
-  // milliseconds while sending() says keyframe tiles are due.
+  // milliseconds while sending() says asked keyframe tiles wait.
   void Tick(double now_s);
-  bool sending(double now_s) const { return answerer_.sending(now_s); }
+  bool sending() const { return answerer_.sending(); }
   // Writes a snapshot of the current map (FailedPrecondition without a state folder).
   core::Status Snapshot() { return aggregator_.WriteSnapshot(); }
 

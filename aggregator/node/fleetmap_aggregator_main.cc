@@ -237,8 +237,8 @@ int RunLive(const Args& args, const AggregatorProcessConfig& config) {
   // or rejected (a backlog still being merged after the last tile shows its end).
   std::tuple<int64_t, int64_t, int64_t> last_seen{-1, -1, -1};
   while (!g_stop) {
-    // Keyframe tiles go as the downlink's budget allows: come back soon while they are due.
-    const int timeout_ms = (*node)->sending(WallClockS()) ? 5 : 100;
+    // Asked keyframe tiles go as the downlink's budget allows: come back soon while they wait.
+    const int timeout_ms = (*node)->sending() ? 5 : 100;
     if ((*links)->Poll(timeout_ms) < 0 && !g_stop) {
       std::fprintf(stderr, "fleetmap-aggregator: LCM receive failed on %s\n",
                    config.uplink_url.c_str());

@@ -29,10 +29,6 @@ double KeyframeSchedule::CreditAt(double now_s) const {
   return std::min(cap, credit_ + std::max(0.0, now_s - last_s_) * tiles_per_s_);
 }
 
-bool KeyframeSchedule::Due(double now_s) const {
-  return asked_count_ > 0 || (num_tiles_ > 0 && CreditAt(now_s) >= 1.0);
-}
-
 std::optional<int32_t> KeyframeSchedule::Next(double now_s) {
   if (std::optional<int32_t> tile = NextAsked()) {
     credit_ = CreditAt(now_s);  // the rolling pace goes on meanwhile

@@ -30,8 +30,6 @@ class KeyframeSchedule {
   // Only an asked tile, or only a rolling one (when the caller limits the rolling keyframe).
   std::optional<int32_t> NextAsked();
   std::optional<int32_t> NextRolling(double now_s);
-  // Whether Next(now_s) would return a tile (changes nothing).
-  bool Due(double now_s) const;
 
   int32_t asked() const { return asked_count_; }  // asked tiles not yet sent
   int64_t rounds() const { return rounds_; }      // rolling rounds completed

@@ -40,8 +40,10 @@ class MapRequestAnswerer {
   // while the downlink has room.
   void Tick(double now_s);
 
-  // Keyframe tiles are due now: the caller should Tick again soon.
-  bool sending(double now_s) const { return schedule_.Due(now_s); }
+  // Asked keyframe tiles wait: they go at the downlink's whole budget, so the caller should
+  // Tick again within milliseconds. (The rolling keyframe's quarter of it goes in the room of
+  // ordinary ticks.)
+  bool sending() const { return schedule_.asked() > 0; }
   // Asked keyframe tiles not yet sent.
   int32_t tiles_waiting() const { return schedule_.asked(); }
 

@@ -115,7 +115,7 @@ TEST(MapRequestAnswererTest, KeyframeTilesWaitForRoomDeltasDoNot) {
   EXPECT_EQ(a.parts.counters.deltas_resent, 1) << "the delta 1 -> 2";
   EXPECT_GT(a.parts.out.Count(lcmtypes::kMapDeltaChannel), 0u);
   EXPECT_GT(a.answerer.tiles_waiting(), 0);
-  EXPECT_TRUE(a.answerer.sending(1.0));
+  EXPECT_TRUE(a.answerer.sending());
   const int32_t waiting = a.answerer.tiles_waiting();
   a.parts.out.room_bytes = std::numeric_limits<size_t>::max();
   a.answerer.Tick(1.1);

@@ -198,16 +198,15 @@ TEST(AggregatorNodeMapHashTest, EqualMapsEqualHashesAnyCellOrGeometryChangesIt) 
 // keyframe; the rolling keyframe sends every tile in turn at one round per period.
 TEST(KeyframeScheduleTest, AskedTilesOnceAndFirstThenEveryTileInTurnAtThePace) {
   KeyframeSchedule s(10, /*period_s=*/5.0, /*now_s=*/100.0);  // 2 tiles/s
-  EXPECT_FALSE(s.Due(100.0));
+  EXPECT_FALSE(s.Next(100.0));
   s.Ask({4, 2});
   s.Ask({2, 9, 12, -1});  // 2 again; 12 and -1 are no tiles of the map
   EXPECT_EQ(s.asked(), 3);
-  EXPECT_TRUE(s.Due(100.0));
   std::vector<int32_t> sent;
   while (auto t = s.Next(100.0)) sent.push_back(*t);
   EXPECT_EQ(sent, (std::vector<int32_t>{2, 4, 9}));
   EXPECT_EQ(s.asked_sent(), 3);
-  EXPECT_FALSE(s.Due(100.4));
+  EXPECT_FALSE(s.Next(100.4));
   EXPECT_EQ(s.Next(100.5), 0) << "the rolling keyframe: one tile per 0.5 s";
   EXPECT_FALSE(s.Next(100.9));
   EXPECT_EQ(s.Next(101.0), 1);
@@ -230,7 +229,7 @@ TEST(KeyframeScheduleTest, APeriodOfZeroSendsOnlyWhatIsAsked) {
   EXPECT_FALSE(s.Next(1e6));
   s.Ask({3});
   EXPECT_EQ(s.Next(1e6), 3);
-  EXPECT_FALSE(s.Due(2e6));
+  EXPECT_FALSE(s.Next(2e6));
 }
 
 }  // namespace
