@@ -52,22 +52,34 @@ void SendRequest(AggregatorNode& node, const std::vector<uint8_t>& bytes, double
   node.OnMessage(lcmtypes::kMapRequestChannel, bytes.data(), static_cast<int>(bytes.size()), now_s);
 }
 
+// Decodes one tile message of type Message and hands the tile to `add`.
+template <typename Message, typename Add>
+core::Status DeliverTile(const SentMessage& m, Add add) {
+  auto msg = lcmtypes::Decode<Message>(
+      m.bytes.data(), static_cast<int>(auth::PayloadSize(m.bytes.data(), m.bytes.size())));
+  if (!msg.ok()) return msg.status();
+  auto tile = lcmtypes::FromMessage(*msg);
+  if (!tile.ok()) return tile.status();
+  return add(*tile).status();
+}
+
+// Hands one downlink message to a vehicle's replica: keyframe and delta tiles; others ignored.
+core::Status Deliver(const SentMessage& m, core::MapReplica& replica) {
+  if (m.channel == lcmtypes::kMapKeyframeChannel)
+    return DeliverTile<fleetmap::map_keyframe_t>(
+        m, [&](const core::KeyframeTile& t) { return replica.AddKeyframeTile(t); });
+  if (m.channel == lcmtypes::kMapDeltaChannel)
+    return DeliverTile<fleetmap::map_delta_t>(
+        m, [&](const core::DeltaTile& t) { return replica.AddDeltaTile(t); });
+  return core::OkStatus();
+}
+
 // Builds a replica from every keyframe tile, then applies every delta tile, in send order.
 core::MapReplica Replay(const RecordingPublisher& out) {
   core::MapReplica replica;
   for (const SentMessage& m : out.sent) {
-    const int size = static_cast<int>(auth::PayloadSize(m.bytes.data(), m.bytes.size()));
-    if (m.channel == lcmtypes::kMapKeyframeChannel) {
-      auto msg = lcmtypes::Decode<fleetmap::map_keyframe_t>(m.bytes.data(), size);
-      auto tile = lcmtypes::FromMessage(*msg);
-      EXPECT_TRUE(tile.ok()) << tile.status().ToString();
-      EXPECT_TRUE(replica.AddKeyframeTile(*tile).ok());
-    } else if (m.channel == lcmtypes::kMapDeltaChannel) {
-      auto msg = lcmtypes::Decode<fleetmap::map_delta_t>(m.bytes.data(), size);
-      auto tile = lcmtypes::FromMessage(*msg);
-      EXPECT_TRUE(tile.ok()) << tile.status().ToString();
-      EXPECT_TRUE(replica.AddDeltaTile(*tile).ok());
-    }
+    const core::Status s = Deliver(m, replica);
+    EXPECT_TRUE(s.ok()) << m.channel << ": " << s.ToString();
   }
   return replica;
 }
@@ -208,6 +220,50 @@ TEST(AggregatorNodeTest, StatusEverySecondAndARollingKeyframeRoundEveryPeriod) {
   EXPECT_NEAR(static_cast<double>(node->counters().keyframe_tiles_sent), 2.1 * TileCount(*node),
               2.0);
   for (const SentMessage& m : out.sent) EXPECT_EQ(m.link, Link::kDownlink) << m.channel;
+}
+
+// A vehicle joining without a map over a link that loses every third message, while the map
+// changes twice: it asks for the whole map, then once a second for the tiles it still lacks
+// (or, holding a map, for the deltas since its version, as agents do), and the rolling
+// keyframe fills in meanwhile. It ends with the current map.
+TEST(AggregatorNodeTest, AVehicleJoiningOverALossyLinkEndsWithTheCurrentMap) {
+  RecordingPublisher out;
+  auto node = MakeNode(&out);  // the rolling keyframe on, as deployed
+  for (size_t i = 0; i < 2; ++i)
+    Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + int64_t(i) * 20'000'000), 1.0);
+  const CurrentMapStore& store = node->aggregator().store();
+  ASSERT_EQ(store.version(), 2u);
+  core::MapReplica replica;
+  size_t next = out.sent.size();  // the vehicle joins now
+  size_t lost = 0;
+  double t = 2.0;
+  const auto current = [&] {
+    return replica.has_map() && !replica.NeedsKeyframe() &&
+           replica.version() == static_cast<int32_t>(store.version());
+  };
+  for (int tick = 0; tick < 300 && !(tick > 20 && current()); ++tick) {
+    t += 0.1;
+    if (tick % 10 == 0 && !replica.has_map())
+      SendRequest(*node, Request(-1, replica.MissingKeyframeTiles()), t);
+    if (tick % 10 == 0 && replica.has_map() && replica.NeedsKeyframe())
+      SendRequest(*node, Request(replica.version()), t);
+    if (tick == 15 || tick == 16) {
+      const size_t i = static_cast<size_t>(tick - 13);  // versions 3 and 4
+      Feed(*node, "v1", TileMessages(PalletMaps()[i], kUtime + int64_t(i) * 20'000'000), t);
+    }
+    node->Tick(t);
+    for (; next < out.sent.size(); ++next) {
+      if (next % 3 == 0) {
+        ++lost;
+        continue;
+      }
+      (void)Deliver(out.sent[next], replica);  // refusals (a version gap too long) are normal
+    }
+  }
+  ASSERT_EQ(store.version(), 4u);
+  EXPECT_GT(lost, 10u);
+  ASSERT_TRUE(current()) << "after 30 s: version " << replica.version();
+  ExpectSameMap(replica.map(), store.current_map());
 }
 
 TEST(AggregatorNodeTest, EveryMessageStaysAFewKilobytes) {
