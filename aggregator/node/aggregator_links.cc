@@ -63,9 +63,7 @@ size_t AggregatorLinks::RoomBytes(Link) const {
 
 bool AggregatorLinks::Publish(Link link, const std::string& channel,
                               const std::vector<uint8_t>& bytes) {
-  // Without a byte budget, as many as a hundred keyframes of a large site.
-  const double max_bytes = downlink_.bytes_per_s > 0.0 ? downlink_.bytes_per_s * kMaxQueuedS : 64e6;
-  if (static_cast<double>(queued_bytes_ + bytes.size()) > max_bytes) return false;
+  if (static_cast<double>(queued_bytes_ + bytes.size()) > max_queued_bytes_) return false;
   queue_.push_back({link, channel, bytes});
   queued_bytes_ += bytes.size();
   Flush();

@@ -44,7 +44,10 @@ class AggregatorLinks : public Publisher {
 
  private:
   AggregatorLinks(std::unique_ptr<edge::LcmGroups> groups, const core::PacerOptions& downlink)
-      : groups_(std::move(groups)), downlink_(downlink), pacer_(downlink) {}
+      : groups_(std::move(groups)),
+        // Without a byte budget, as many as a hundred keyframes of a large site.
+        max_queued_bytes_(downlink.bytes_per_s > 0.0 ? downlink.bytes_per_s * kMaxQueuedS : 64e6),
+        pacer_(downlink) {}
 
   struct Outgoing {
     Link link;
@@ -52,7 +55,7 @@ class AggregatorLinks : public Publisher {
     std::vector<uint8_t> bytes;
   };
   std::unique_ptr<edge::LcmGroups> groups_;
-  core::PacerOptions downlink_;
+  const double max_queued_bytes_;
   std::deque<Outgoing> queue_;
   size_t queued_bytes_ = 0;
   core::SendPacer pacer_;

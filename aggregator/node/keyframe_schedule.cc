@@ -29,15 +29,6 @@ double KeyframeSchedule::CreditAt(double now_s) const {
   return std::min(cap, credit_ + std::max(0.0, now_s - last_s_) * tiles_per_s_);
 }
 
-std::optional<int32_t> KeyframeSchedule::Next(double now_s) {
-  if (std::optional<int32_t> tile = NextAsked()) {
-    credit_ = CreditAt(now_s);  // the rolling pace goes on meanwhile
-    last_s_ = std::max(last_s_, now_s);
-    return tile;
-  }
-  return NextRolling(now_s);
-}
-
 std::optional<int32_t> KeyframeSchedule::NextAsked() {
   if (asked_count_ == 0) return std::nullopt;
   while (!asked_[asked_cursor_]) asked_cursor_ = (asked_cursor_ + 1) % num_tiles_;

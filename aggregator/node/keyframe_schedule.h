@@ -23,12 +23,11 @@ class KeyframeSchedule {
 
   // Tiles by linear index (any out of range ignored); empty: every tile.
   void Ask(const std::vector<int32_t>& tiles);
-  // The tile to send now: an asked one (in index order from the last sent, round robin), else
-  // the next rolling one when the round's pace allows; nothing when neither is due. Each tile
-  // returned counts as sent.
-  std::optional<int32_t> Next(double now_s);
-  // Only an asked tile, or only a rolling one (when the caller limits the rolling keyframe).
+  // An asked tile to send now (in index order from the last sent, round robin), or nothing.
+  // The caller sends these first. Each tile returned counts as sent.
   std::optional<int32_t> NextAsked();
+  // The next tile of the rolling keyframe when the round's pace allows one at now_s, or
+  // nothing. Each tile returned counts as sent.
   std::optional<int32_t> NextRolling(double now_s);
 
   int32_t asked() const { return asked_count_; }  // asked tiles not yet sent

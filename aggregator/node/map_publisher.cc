@@ -73,12 +73,14 @@ void MapPublisher::SendDelta(const MapDelta& delta, double now_s) {
   report_.counters.delta_tiles_sent += static_cast<int64_t>(messages.size());
 }
 
-void MapPublisher::SendKeyframe(const std::vector<int32_t>* only, double now_s) {
-  if (!publisher_) return;  // encoding a hundred tiles for nobody
+size_t MapPublisher::SendKeyframe(const std::vector<int32_t>* only, double now_s) {
+  if (!publisher_) return 0;  // encoding a hundred tiles for nobody
   const auto messages = KeyframeMessages(aggregator_.store(), aggregator_.options().store.tiles,
                                          only, lcmtypes::ToUtime(now_s));
-  for (const auto& m : messages) Send(Link::kDownlink, lcmtypes::kMapKeyframeChannel, m);
+  size_t bytes = 0;
+  for (const auto& m : messages) bytes += Send(Link::kDownlink, lcmtypes::kMapKeyframeChannel, m);
   report_.counters.keyframe_tiles_sent += static_cast<int64_t>(messages.size());
+  return bytes;
 }
 
 size_t MapPublisher::room_bytes() const {
@@ -101,8 +103,8 @@ void MapPublisher::SendStatus(const StatusFields& fields, double now_s) {
 }
 
 template <typename T>
-void MapPublisher::Send(Link link, const std::string& channel, const T& message) {
-  if (!publisher_) return;
+size_t MapPublisher::Send(Link link, const std::string& channel, const T& message) {
+  if (!publisher_) return 0;
   std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
   message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   signer_.Seal(channel, bytes);
@@ -120,6 +122,7 @@ void MapPublisher::Send(Link link, const std::string& channel, const T& message)
     report_.Refuse("publish failed", report_.counters.publish_failures,
                    std::string("the ") + LinkName(link) + " refused a message on " + channel);
   }
+  return bytes.size();
 }
 
 }  // namespace fleetmap::aggregator::node

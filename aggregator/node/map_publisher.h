@@ -50,7 +50,8 @@ class MapPublisher {
   // MAP_DELTA tiles of one version.
   void SendDelta(const MapDelta& delta, double now_s);
   // MAP_KEYFRAME tiles of the current map: every tile, or only the linear tile indices `only`.
-  void SendKeyframe(const std::vector<int32_t>* only, double now_s);
+  // Returns the bytes sent.
+  size_t SendKeyframe(const std::vector<int32_t>* only, double now_s);
   // MAP_CANDIDATES, the whole set at the current version.
   void SendCandidates(double now_s);
   // STATUS_<process_name>.
@@ -60,8 +61,9 @@ class MapPublisher {
   const std::map<std::string, size_t>& largest_messages() const { return largest_; }
 
  private:
+  // Returns the message's bytes (0 without a Publisher).
   template <typename T>
-  void Send(Link link, const std::string& channel, const T& message);
+  size_t Send(Link link, const std::string& channel, const T& message);
 
   const Aggregator& aggregator_;
   const AggregatorNodeOptions options_;

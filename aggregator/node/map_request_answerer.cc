@@ -114,9 +114,8 @@ void MapRequestAnswerer::SendKeyframeTiles(double now_s) {
     if (rolling && rolling_share_.MaySend(now_s)) tile = schedule_.NextRolling(now_s);
     if (!tile) break;
     const std::vector<int32_t> only = {*tile};
-    const int64_t before = report_.counters.bytes_sent;
-    publisher_.SendKeyframe(&only, now_s);
-    if (rolling) rolling_share_.Sent(0, static_cast<size_t>(report_.counters.bytes_sent - before));
+    const size_t bytes = publisher_.SendKeyframe(&only, now_s);
+    if (rolling) rolling_share_.Sent(0, bytes);
   }
   report_.counters.keyframe_rounds = schedule_.rounds();
   report_.counters.asked_tiles_sent = schedule_.asked_sent();

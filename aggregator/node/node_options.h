@@ -24,7 +24,7 @@ struct AggregatorNodeOptions {
   double keyframe_period_s = 10.0;
   // The downlink's budget (docs/channels.md): everything the node sends, paced, bytes/s > 0.
   // Multicast on Wi-Fi goes at the channel's basic rate (often 6 Mbit/s): 200 kB/s is 1.6
-  // Mbit/s of it, and a 40M-cell hall's whole map (1.7 MB) in about 8 s.
+  // Mbit/s of it, and a 44M-cell hall's whole map (2.1 MB) in about 11 s.
   double downlink_bytes_per_s = 200000.0;
   // ... and messages/s > 0: tiles are small, and slow readers (lcm-logger) drop bursts.
   double downlink_messages_per_s = 2000.0;

@@ -194,42 +194,44 @@ TEST(AggregatorNodeMapHashTest, EqualMapsEqualHashesAnyCellOrGeometryChangesIt) 
             "aggregator: version 3 map_hash 0000000000000abc merged 2 rejected 1");
 }
 
-// Asked tiles wait once however often they are asked for, and go before the rolling
-// keyframe; the rolling keyframe sends every tile in turn at one round per period.
+// Asked tiles wait once however often they are asked for, and go without waiting for a pace;
+// the rolling keyframe sends every tile in turn at one round per period.
 TEST(KeyframeScheduleTest, AskedTilesOnceAndFirstThenEveryTileInTurnAtThePace) {
   KeyframeSchedule s(10, /*period_s=*/5.0, /*now_s=*/100.0);  // 2 tiles/s
-  EXPECT_FALSE(s.Next(100.0));
+  EXPECT_FALSE(s.NextAsked());
+  EXPECT_FALSE(s.NextRolling(100.0));
   s.Ask({4, 2});
   s.Ask({2, 9, 12, -1});  // 2 again; 12 and -1 are no tiles of the map
   EXPECT_EQ(s.asked(), 3);
   std::vector<int32_t> sent;
-  while (auto t = s.Next(100.0)) sent.push_back(*t);
+  while (auto t = s.NextAsked()) sent.push_back(*t);
   EXPECT_EQ(sent, (std::vector<int32_t>{2, 4, 9}));
   EXPECT_EQ(s.asked_sent(), 3);
-  EXPECT_FALSE(s.Next(100.4));
-  EXPECT_EQ(s.Next(100.5), 0) << "the rolling keyframe: one tile per 0.5 s";
-  EXPECT_FALSE(s.Next(100.9));
-  EXPECT_EQ(s.Next(101.0), 1);
+  EXPECT_FALSE(s.NextRolling(100.4));
+  EXPECT_EQ(s.NextRolling(100.5), 0) << "the rolling keyframe: one tile per 0.5 s";
+  EXPECT_FALSE(s.NextRolling(100.9));
+  EXPECT_EQ(s.NextRolling(101.0), 1);
   s.Ask({});  // every tile
   EXPECT_EQ(s.asked(), 10);
   sent.clear();
-  while (auto t = s.Next(101.0)) sent.push_back(*t);
+  while (auto t = s.NextAsked()) sent.push_back(*t);
   EXPECT_EQ(sent.size(), 10u) << "asked tiles go without waiting for the pace";
   sent.clear();
-  for (double t = 101.5; t <= 105.01; t += 0.5) sent.push_back(*s.Next(t));
+  for (double t = 101.5; t <= 105.01; t += 0.5) sent.push_back(*s.NextRolling(t));
   EXPECT_EQ(sent, (std::vector<int32_t>{2, 3, 4, 5, 6, 7, 8, 9}));
   EXPECT_EQ(s.rounds(), 1);
-  EXPECT_EQ(s.Next(200.0), 0);
-  EXPECT_EQ(s.Next(200.0), 1) << "at most a second of the pace after a pause";
-  EXPECT_FALSE(s.Next(200.0));
+  EXPECT_EQ(s.NextRolling(200.0), 0);
+  EXPECT_EQ(s.NextRolling(200.0), 1) << "at most a second of the pace after a pause";
+  EXPECT_FALSE(s.NextRolling(200.0));
 }
 
 TEST(KeyframeScheduleTest, APeriodOfZeroSendsOnlyWhatIsAsked) {
   KeyframeSchedule s(4, 0.0, 0.0);
-  EXPECT_FALSE(s.Next(1e6));
+  EXPECT_FALSE(s.NextRolling(1e6));
   s.Ask({3});
-  EXPECT_EQ(s.Next(1e6), 3);
-  EXPECT_FALSE(s.Next(2e6));
+  EXPECT_EQ(s.NextAsked(), 3);
+  EXPECT_FALSE(s.NextAsked());
+  EXPECT_FALSE(s.NextRolling(2e6));
 }
 
 }  // namespace
