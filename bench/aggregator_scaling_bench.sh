@@ -30,6 +30,7 @@ uplink_log=${FLEETMAP_BENCH_UPLINK_LOG:-$root/out/bench/fleet/logs/uplink.lcmlog
 if [[ ! -s $uplink_log ]]; then
   echo "aggregator_scaling_bench: recording the temporary maps: scripts/fleet_run.sh into out/bench/fleet" >&2
   # Only the recorded uplink is used: fleet_run.sh's own checks (scores, replay) do not matter.
+  mkdir -p "$root/out/bench"
   "$root/scripts/fleet_run.sh" --out "$root/out/bench/fleet" --port 7931 --bin "$build/bin" \
     --name bench_fleet >"$root/out/bench/fleet_run.txt" 2>&1 ||
     echo "aggregator_scaling_bench: fleet_run.sh reported a failure (out/bench/fleet_run.txt); using its uplink log" >&2
