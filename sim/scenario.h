@@ -44,6 +44,13 @@ struct OdometryNoise {
   double trans_per_trans = 0.02;       // m of translation noise per metre driven
   double trans_per_rot_m_rad = 0.005;  // m of translation noise per rad turned
   double rate_hz = 50.0;               // odometry messages per second
+  // The noise above is drawn anew for every increment, so at 50 Hz it averages out: over a
+  // metre it is a tenth of its per-metre value. Real odometry errs systematically too (a
+  // wheel's radius a little off, a wheelbase that is not the nominal one), and over the
+  // 0.3-2 m spans of the SLAM benchmark logs it is off by 3-7 % of the distance and 3-4 deg
+  // per metre (median; docs/scenario.md). These two are drawn once per vehicle and run:
+  double scale_sigma = 0.0;                // distance reported x (1 + s), s ~ N(0, this)
+  double heading_drift_sigma_rad_m = 0.0;  // a turn of b rad per metre driven, b ~ N(0, this)
 };
 
 // A noisy pose from an external localization system, for vehicles that already localize.

@@ -115,6 +115,16 @@ Result<VehicleSpec> ReadVehicle(const YamlReader& r, const YAML::Node& n, const 
         r.Number(o, "trans_per_rot_m_rad", g + ".trans_per_rot_m_rad", d.trans_per_rot_m_rad));
     FLEETMAP_ASSIGN_OR_RETURN(d.rate_hz, r.Number(o, "rate_hz", g + ".rate_hz", d.rate_hz));
     FLEETMAP_RETURN_IF_ERROR(Positive(r, o, "rate_hz", g + ".rate_hz", d.rate_hz));
+    FLEETMAP_ASSIGN_OR_RETURN(d.scale_sigma,
+                              r.Number(o, "scale_sigma", g + ".scale_sigma", d.scale_sigma));
+    FLEETMAP_ASSIGN_OR_RETURN(
+        d.heading_drift_sigma_rad_m,
+        r.Number(o, "heading_drift_sigma_rad_m", g + ".heading_drift_sigma_rad_m",
+                 d.heading_drift_sigma_rad_m));
+    for (const auto& [key, value] : {std::pair<const char*, double>{"scale_sigma", d.scale_sigma},
+                                     {"heading_drift_sigma_rad_m", d.heading_drift_sigma_rad_m}}) {
+      if (!(value >= 0)) return r.Error(o[key] ? o[key] : o, g + "." + key, "must be >= 0");
+    }
   }
   if (const YAML::Node e = n["external_pose"]) {
     const std::string g = f + ".external_pose";

@@ -49,6 +49,13 @@ Simulator::Simulator(const World* world)
     c.next_external_s = vehicles[v].external_pose.enabled ? 0.0 : core::kNoHit;
     c.last_true_pose = world_->VehicleStateAt(v, 0.0).pose;
     c.rng.seed(world_->scenario().seed * 7919u + static_cast<uint32_t>(v));
+    // Drawn only when asked for, so that scenarios without it keep their random streams.
+    const OdometryNoise& n = vehicles[v].odometry;
+    if (n.scale_sigma > 0)
+      c.odom_scale += std::normal_distribution<double>(0.0, n.scale_sigma)(c.rng);
+    if (n.heading_drift_sigma_rad_m > 0)
+      c.odom_heading_drift_rad_m =
+          std::normal_distribution<double>(0.0, n.heading_drift_sigma_rad_m)(c.rng);
     clocks_.push_back(c);
   }
   const core::GridGeometry& g = world_->geometry();
@@ -222,10 +229,14 @@ OdometryEvent Simulator::MakeOdometry(size_t v, double t) {
   auto gauss = [&](double sigma) {
     return sigma > 0 ? std::normal_distribution<double>(0.0, sigma)(c.rng) : 0.0;
   };
-  const double r1 = rot1 + gauss(n.rot_per_rot * std::abs(rot1) + n.rot_per_trans_rad_m * trans);
-  const double tr = trans + gauss(n.trans_per_trans * trans +
-                                  n.trans_per_rot_m_rad * (std::abs(rot1) + std::abs(rot2)));
-  const double r2 = rot2 + gauss(n.rot_per_rot * std::abs(rot2) + n.rot_per_trans_rad_m * trans);
+  const double drift = 0.5 * c.odom_heading_drift_rad_m * trans;  // half before, half after
+  const double r1 =
+      rot1 + drift + gauss(n.rot_per_rot * std::abs(rot1) + n.rot_per_trans_rad_m * trans);
+  const double tr =
+      trans * c.odom_scale +
+      gauss(n.trans_per_trans * trans + n.trans_per_rot_m_rad * (std::abs(rot1) + std::abs(rot2)));
+  const double r2 =
+      rot2 + drift + gauss(n.rot_per_rot * std::abs(rot2) + n.rot_per_trans_rad_m * trans);
   c.odom_pose = c.odom_pose * core::Pose2(0, 0, r1) * core::Pose2(tr, 0, r2);
   c.last_true_pose = truth.pose;
   return {v, t, c.odom_pose, truth.v_mps, truth.omega_radps, truth.pose};

@@ -57,6 +57,7 @@ class Simulator {
     double next_scan_s, next_odom_s, next_external_s;
     core::Pose2 last_true_pose, odom_pose;
     std::mt19937 rng;
+    double odom_scale = 1.0, odom_heading_drift_rad_m = 0.0;  // the systematic odometry error
   };
   ScanEvent MakeScan(size_t v, double t);
   OdometryEvent MakeOdometry(size_t v, double t);

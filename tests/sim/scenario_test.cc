@@ -65,6 +65,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"map: m.yaml\nvehicles:\n  - {id: v, route: [[0,0],[1,0]]}\n  - {id: v, route: "
                 "[[0,0],[1,0]]}\n",
                 "vehicles[1].id: 'v' is used twice"},
+        BadCase{"map: m.yaml\nvehicles:\n  - id: v\n    route: [[0,0],[1,0]]\n"
+                "    odometry_noise: {scale_sigma: -0.01}\n",
+                "bad.yaml:5: vehicles[0].odometry_noise.scale_sigma: must be >= 0"},
         BadCase{"map: [unclosed\n", "bad.yaml:"}));
 
 Scenario Tiny() { return ParseScenario(kGood, "tiny.yaml").value(); }

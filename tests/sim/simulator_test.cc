@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "tests/sim/sim_test_util.h"
 
@@ -95,6 +97,40 @@ TEST(SimulatorTest, OdometryDriftsButStaysClose) {
   const core::Pose2 true_inc = core::Between(start, last.true_base_pose);
   EXPECT_NEAR(last.odom_pose.x_m, true_inc.x_m, 0.2);
   EXPECT_NE(last.odom_pose.x_m, true_inc.x_m);
+}
+
+// The systematic part of the odometry error (a wheel's scale, a heading drift per metre)
+// grows with the distance, unlike the per-increment noise, which averages out.
+TEST(SimulatorTest, ASystematicOdometryErrorGrowsWithTheDistance) {
+  std::string yaml = kRoom;
+  yaml += R"(    odometry_noise: {rot_per_rot: 0, rot_per_trans_rad_m: 0, trans_per_trans: 0,
+                     trans_per_rot_m_rad: 0, scale_sigma: 0.05, heading_drift_sigma_rad_m: 0.05}
+)";
+  const World world =
+      World::Create(ParseScenario(yaml, "room_scenario.yaml").value(), testing::Room()).value();
+  Simulator sim(&world);
+  // Path lengths, increment by increment: the odometry's is the truth's times its scale.
+  struct Reading {
+    double true_m = 0, odom_m = 0, odom_turn_rad = 0;
+  };
+  Reading now, at_1m;
+  core::Pose2 last_true = world.VehicleStateAt(0, 0).pose, last_odom;
+  while (auto e = sim.Next()) {
+    const auto* o = std::get_if<OdometryEvent>(&*e);
+    if (!o) continue;
+    now.true_m += (o->true_base_pose.translation() - last_true.translation()).norm();
+    now.odom_m += (o->odom_pose.translation() - last_odom.translation()).norm();
+    now.odom_turn_rad = o->odom_pose.theta_rad;
+    last_true = o->true_base_pose, last_odom = o->odom_pose;
+    if (at_1m.true_m == 0 && now.true_m > 1.0) at_1m = now;
+  }
+  ASSERT_GT(at_1m.true_m, 1.0);
+  ASSERT_GT(now.true_m, 2.9);  // the 3 m leg, straight: the truth does not turn
+  const double scale = at_1m.odom_m / at_1m.true_m;
+  EXPECT_GT(std::abs(scale - 1), 1e-3);
+  EXPECT_GT(std::abs(at_1m.odom_turn_rad), 1e-3);
+  EXPECT_NEAR(now.odom_m / now.true_m, scale, 1e-9);
+  EXPECT_NEAR(now.odom_turn_rad / now.true_m, at_1m.odom_turn_rad / at_1m.true_m, 1e-9);
 }
 
 TEST(SimulatorTest, SameSeedSameScans) {
