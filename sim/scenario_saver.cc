@@ -31,6 +31,25 @@ void Motion(YAML::Emitter& e, const RouteOptions& m) {
   if (m.dwell_s > 0) e << YAML::Key << "dwell_s" << YAML::Value << Mm(m.dwell_s);
 }
 
+// The odometry's noise where it is not the default, all of it (a reader sees the whole model).
+void OdometryNoiseIfSet(YAML::Emitter& e, const OdometryNoise& n) {
+  const OdometryNoise d;
+  if (n.rot_per_rot == d.rot_per_rot && n.rot_per_trans_rad_m == d.rot_per_trans_rad_m &&
+      n.trans_per_trans == d.trans_per_trans && n.trans_per_rot_m_rad == d.trans_per_rot_m_rad &&
+      n.rate_hz == d.rate_hz && n.scale_sigma == d.scale_sigma &&
+      n.heading_drift_sigma_rad_m == d.heading_drift_sigma_rad_m)
+    return;
+  e << YAML::Key << "odometry_noise" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  e << YAML::Key << "rot_per_rot" << YAML::Value << n.rot_per_rot;
+  e << YAML::Key << "rot_per_trans_rad_m" << YAML::Value << n.rot_per_trans_rad_m;
+  e << YAML::Key << "trans_per_trans" << YAML::Value << n.trans_per_trans;
+  e << YAML::Key << "trans_per_rot_m_rad" << YAML::Value << n.trans_per_rot_m_rad;
+  e << YAML::Key << "rate_hz" << YAML::Value << n.rate_hz;
+  e << YAML::Key << "scale_sigma" << YAML::Value << n.scale_sigma;
+  e << YAML::Key << "heading_drift_sigma_rad_m" << YAML::Value << n.heading_drift_sigma_rad_m;
+  e << YAML::EndMap;
+}
+
 }  // namespace
 
 std::string ScenarioToYaml(const Scenario& s, const std::string& map_reference) {
@@ -72,6 +91,7 @@ std::string ScenarioToYaml(const Scenario& s, const std::string& map_reference) 
     e << YAML::Key << "route" << YAML::Value;
     Points(e, v.route_m);
     Motion(e, v.motion);
+    OdometryNoiseIfSet(e, v.odometry);
     e << YAML::EndMap;
   }
   e << YAML::EndSeq << YAML::EndMap;

@@ -129,6 +129,8 @@ class Writer {
       spec.motion.speed_mps = o_.vehicle_speed_mps;
       spec.motion.loop = true;
       spec.motion.start_s = 5.0 * v;
+      spec.odometry.scale_sigma = o_.odometry_scale_sigma;
+      spec.odometry.heading_drift_sigma_rad_m = o_.odometry_heading_drift_sigma_rad_m;
       periods_.push_back(sim::Route(*route, spec.motion).period_s());
       s.vehicles.push_back(spec);
     }
@@ -306,10 +308,11 @@ class Writer {
 core::Status ScenarioOptions::Validate() const {
   if (vehicles < 1 || vehicles > 5) return core::InvalidArgument("vehicles must be 1 to 5");
   if (!(duration_s > 0) || !(vehicle_speed_mps > 0) || !(vehicle_clearance_m > 0) ||
-      !(object_gap_m >= 0) || !(max_loop_m >= 0))
+      !(object_gap_m >= 0) || !(max_loop_m >= 0) || !(odometry_scale_sigma >= 0) ||
+      !(odometry_heading_drift_sigma_rad_m >= 0))
     return core::InvalidArgument(
-        "duration_s, vehicle_speed_mps and vehicle_clearance_m must be positive, object_gap_m "
-        "and max_loop_m not negative");
+        "duration_s, vehicle_speed_mps and vehicle_clearance_m must be positive, object_gap_m, "
+        "max_loop_m and the odometry sigmas not negative");
   if (objects_added < 0 || objects_removed < 0 || people < 0 || forklifts < 0)
     return core::InvalidArgument("counts of objects, people and forklifts must not be negative");
   return core::OkStatus();

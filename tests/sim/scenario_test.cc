@@ -110,6 +110,8 @@ TEST(ScenarioTest, WrittenAsYamlItReadsBackTheSame) {
   forklift.motion.dwell_s = 4;
   s.actors.push_back(forklift);
   s.vehicles[0].scanner = FindScannerModel("TiM571").value();
+  s.vehicles[0].odometry.trans_per_trans = 0.03;
+  s.vehicles[0].odometry.heading_drift_sigma_rad_m = 0.04;
   auto back = ParseScenario(ScenarioToYaml(s, "room.yaml"), "/w/room_scenario.yaml");
   ASSERT_TRUE(back.ok()) << back.status().ToString() << "\n" << ScenarioToYaml(s, "room.yaml");
   EXPECT_EQ(back->map_yaml, "/w/room.yaml");
@@ -130,6 +132,12 @@ TEST(ScenarioTest, WrittenAsYamlItReadsBackTheSame) {
   EXPECT_EQ(back->vehicles[0].scanner.name, "TiM571");
   EXPECT_EQ(back->vehicles[0].route_m, s.vehicles[0].route_m);
   EXPECT_EQ(back->vehicles[0].motion.speed_mps, 1.0);
+  EXPECT_EQ(back->vehicles[0].odometry.trans_per_trans, 0.03);
+  EXPECT_EQ(back->vehicles[0].odometry.heading_drift_sigma_rad_m, 0.04);
+  EXPECT_EQ(back->vehicles[0].odometry.rot_per_rot, OdometryNoise().rot_per_rot);
+  // A vehicle with the default odometry gets no odometry_noise in the file.
+  s.vehicles[0].odometry = OdometryNoise();
+  EXPECT_EQ(ScenarioToYaml(s, "room.yaml").find("odometry_noise"), std::string::npos);
 }
 
 TEST(WorldTest, RejectsARouteThroughAWall) {

@@ -135,6 +135,26 @@ TEST(ScenarioWriterTest, TheSameSeedWritesTheSameScenario) {
   EXPECT_NE(sim::ScenarioToYaml(a->scenario, "m.yaml"), sim::ScenarioToYaml(c->scenario, "m.yaml"));
 }
 
+// Odometry that errs systematically, as the SLAM benchmark logs' own does, also in the file
+// the suite hands to the evaluation.
+TEST(ScenarioWriterTest, TheVehiclesOdometryErrsAsRealOdometryDoes) {
+  const core::OccupancyGrid map = Warehouse(2);
+  ScenarioOptions o;
+  o.odometry_scale_sigma = 0.04;
+  o.odometry_heading_drift_sigma_rad_m = 0.07;
+  auto written = WriteScenarioFor(map, "m.yaml", o);
+  ASSERT_TRUE(written.ok()) << written.status().ToString();
+  auto reread = sim::ParseScenario(sim::ScenarioToYaml(written->scenario, "m.yaml"), "w");
+  ASSERT_TRUE(reread.ok()) << reread.status().ToString();
+  ASSERT_FALSE(reread->vehicles.empty());
+  for (const sim::VehicleSpec& v : reread->vehicles) {
+    EXPECT_EQ(v.odometry.scale_sigma, 0.04) << v.id;
+    EXPECT_EQ(v.odometry.heading_drift_sigma_rad_m, 0.07) << v.id;
+  }
+  o.odometry_scale_sigma = -0.01;
+  EXPECT_FALSE(WriteScenarioFor(map, "m.yaml", o).ok());
+}
+
 TEST(ScenarioWriterTest, WritesAScenarioForAPublicMapOfARealWarehouse) {
   const std::string rel = "worlds/mvsim_warehouse/mvsim_warehouse.yaml";
   FLEETMAP_SKIP_WITHOUT_DATA(rel);
