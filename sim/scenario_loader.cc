@@ -19,6 +19,12 @@ Status Positive(const YamlReader& r, const YAML::Node& parent, const std::string
   return r.Error(parent[key] ? parent[key] : parent, field, "must be positive");
 }
 
+Status NonNegative(const YamlReader& r, const YAML::Node& parent, const std::string& key,
+                   const std::string& field, double value) {
+  if (value >= 0) return core::OkStatus();
+  return r.Error(parent[key] ? parent[key] : parent, field, "must be >= 0");
+}
+
 Status ReadMotion(const YamlReader& r, const YAML::Node& n, const std::string& f, RouteOptions& m) {
   FLEETMAP_ASSIGN_OR_RETURN(m.speed_mps, r.Number(n, "speed_mps", f + ".speed_mps", m.speed_mps));
   FLEETMAP_RETURN_IF_ERROR(Positive(r, n, "speed_mps", f + ".speed_mps", m.speed_mps));
@@ -121,10 +127,10 @@ Result<VehicleSpec> ReadVehicle(const YamlReader& r, const YAML::Node& n, const 
         d.heading_drift_sigma_rad_m,
         r.Number(o, "heading_drift_sigma_rad_m", g + ".heading_drift_sigma_rad_m",
                  d.heading_drift_sigma_rad_m));
-    for (const auto& [key, value] : {std::pair<const char*, double>{"scale_sigma", d.scale_sigma},
-                                     {"heading_drift_sigma_rad_m", d.heading_drift_sigma_rad_m}}) {
-      if (!(value >= 0)) return r.Error(o[key] ? o[key] : o, g + "." + key, "must be >= 0");
-    }
+    FLEETMAP_RETURN_IF_ERROR(NonNegative(r, o, "scale_sigma", g + ".scale_sigma", d.scale_sigma));
+    FLEETMAP_RETURN_IF_ERROR(NonNegative(r, o, "heading_drift_sigma_rad_m",
+                                         g + ".heading_drift_sigma_rad_m",
+                                         d.heading_drift_sigma_rad_m));
   }
   if (const YAML::Node e = n["external_pose"]) {
     const std::string g = f + ".external_pose";
