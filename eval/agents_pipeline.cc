@@ -108,11 +108,8 @@ class AgentsPipeline : public Pipeline {
     record.closed_s = map.end_s;
     record.merged_s = now_s;  // in-process: merged as soon as closed
     // Where the map truly lies: the grid's corner placed by the vehicle's true pose at the
-    // map's first scan, which defines its frame T (a map split from the one before starts at
-    // the scan after the split, later than start_s).
-    const double t0 =
-        map.trajectory_in_temp.empty() ? map.start_s : map.trajectory_in_temp.front().stamp_s;
-    record.true_origin = world_.VehicleStateAt(v, t0).pose * map.grid.geometry().origin();
+    // map's start, which defines its frame T (as the recorded run's evaluation reads it).
+    record.true_origin = world_.VehicleStateAt(v, map.start_s).pose * map.grid.geometry().origin();
     record.anchor_origin = map.PlacedGeometry().origin();
     const TempMapDrift drift = BuilderDrift(
         map.trajectory_in_temp, [&](double t) { return world_.VehicleStateAt(v, t).pose; });

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "vehicle_agent/localization/input_guard.h"
 
@@ -82,6 +83,7 @@ void AgentPipeline::WatchCandidates(const core::LaserScan& scan, const core::Pos
 void AgentPipeline::StartMap(double stamp_s, const core::Pose2& anchor) {
   builder_ = TempMapBuilder(options_.builder);
   builder_.Start(options_.vehicle_id, next_sequence_++, stamp_s, anchor);
+  clean_odom_at_builder_ = localizer_.clean_odometry();  // the anchor is the pose at this scan
   ++counters_.temp_maps_started;
 }
 
@@ -103,11 +105,6 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   step.well_localized = well_localized;
   step.divergence =
       divergence_.Update(scan.stamp_s, located.stats.w_avg, odom_.omega_radps, well_localized);
-  // From the localizer's clean odometry: a jump the tracker refused must not tear the
-  // temporary map either.
-  const core::Pose2 odometry_delta =
-      core::Between(clean_odom_at_last_scan_, localizer_.clean_odometry());
-  clean_odom_at_last_scan_ = localizer_.clean_odometry();
   const bool valid = scan.Validate().ok();
   const std::optional<double> previous_s = last_scan_stamp_s_;
   if (valid) last_scan_stamp_s_ = scan.stamp_s;
@@ -122,15 +119,26 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
     if (step.divergence.building && !step.divergence.stopped)
       StartMap(scan.stamp_s, step.pose.pose_in_map);
   }
-  if (step.divergence.started && !builder_.building())
+  const bool continues = std::exchange(continue_at_next_scan_, false) && step.divergence.building &&
+                         !step.divergence.stopped;
+  if ((step.divergence.started || continues) && !builder_.building())
     StartMap(scan.stamp_s, step.pose.pose_in_map);
   if (builder_.building() && step.divergence.accepted && valid) {
+    // From the localizer's clean odometry (a jump the tracker refused must not tear the
+    // temporary map either), since the anchor or the map's last scan: a scan left out still
+    // moved the vehicle.
+    const core::Pose2 odometry_delta =
+        core::Between(clean_odom_at_builder_, localizer_.clean_odometry());
+    clean_odom_at_builder_ = localizer_.clean_odometry();
     const BuilderStep built = builder_.AddScan(scan, odometry_delta, options_.scanner_in_base);
     if (built.must_close && !step.divergence.stopped) {
-      // Out of area or time while the change goes on: close this map and go on in a new one.
+      // Out of area or time while the change goes on: close this map and go on in a new one
+      // from the next scan. Anchored here instead, it would hold the next scan's view in a
+      // frame a scan's motion behind its anchor (up to 2 degrees in a turn), or that motion
+      // from the odometry, whose heading errs by degrees per metre.
       step.closed_map = builder_.Close(scan.stamp_s);
       ++counters_.temp_maps_split;
-      StartMap(scan.stamp_s, step.pose.pose_in_map);
+      continue_at_next_scan_ = true;
     }
   }
   if (step.divergence.stopped && builder_.building())

@@ -102,9 +102,14 @@ class AgentPipeline {
   DivergenceDetector divergence_;
   TempMapBuilder builder_;
   core::OdometrySample odom_;
-  core::Pose2 clean_odom_at_last_scan_;      // the localizer's clean odometry at the last scan
+  // The localizer's clean odometry where the temporary map last moved on: at its anchor, then
+  // at each scan it took. The next scan is placed by the motion since.
+  core::Pose2 clean_odom_at_builder_;
   std::optional<double> last_scan_stamp_s_;  // of the last valid scan
   int32_t next_sequence_ = 1;
+  // A map closed for its time or area while the change goes on: the next one starts at the
+  // next scan, anchored at that scan's localized pose (its frame T is the vehicle there).
+  bool continue_at_next_scan_ = false;
   AgentCounters counters_;
   std::optional<CandidateWatch> watch_;  // from the first map on
   std::vector<int64_t> candidates_;      // the last set given

@@ -194,6 +194,29 @@ TEST(AgentPipelineTest, AMapBeingBuiltClosesAtAScanGapAndTheChangeGoesOnInANewOn
   EXPECT_TRUE(spans);
 }
 
+// Every temporary map is anchored at the localized pose of its own first scan, which is its
+// frame T; a map split from the one before (its time up, here every second) too, not at the
+// scan that closed the last one, a scan's motion behind.
+TEST(AgentPipelineTest, EveryMapIsAnchoredAtItsFirstScan) {
+  const DriveResult run = Drive([](double) { return false; },
+                                [](AgentPipelineOptions& o) { o.builder.max_duration_s = 1.0; });
+  EXPECT_GE(run.counters.temp_maps_split, 3);
+  for (const core::TempMap& m : run.maps) {
+    ASSERT_FALSE(m.trajectory_in_temp.empty());
+    const core::TimedPose& first = m.trajectory_in_temp.front();
+    EXPECT_EQ(first.stamp_s, m.start_s) << "map " << m.sequence;
+    const auto step = std::find_if(run.steps.begin(), run.steps.end(), [&](const AgentStep& s) {
+      return s.pose.stamp_s == first.stamp_s;
+    });
+    ASSERT_NE(step, run.steps.end());
+    const core::Pose2& localized = step->pose.pose_in_map;
+    const core::Pose2 placed = m.anchor_in_map * first.pose;
+    EXPECT_NEAR(placed.x_m, localized.x_m, 1e-9) << "map " << m.sequence;
+    EXPECT_NEAR(placed.y_m, localized.y_m, 1e-9) << "map " << m.sequence;
+    EXPECT_NEAR(core::NormalizeAngle(placed.theta_rad - localized.theta_rad), 0.0, 1e-9);
+  }
+}
+
 // The vehicle's pose jumps 4.5 m across the aisle and turns while it maps the pallet (a
 // kidnapping): the scans stop making sense, it finds itself by a search, and the map it was
 // building then, anchored at the wrong pose, is dropped, not sent.

@@ -60,7 +60,9 @@ ScanUpdate LocalMapper::AddScan(const core::LaserScan& scan, const core::Pose2& 
       std::hypot(odometry_delta.x_m, odometry_delta.y_m) <= options_.rest_max_translation_m &&
       std::abs(odometry_delta.theta_rad) <= options_.rest_max_rotation_rad &&
       (options_.rest_max_translation_m > 0 || options_.rest_max_rotation_rad > 0);
-  if (!first_) {
+  if (first_) {
+    pose_ = pose_ * odometry_delta;  // nothing to match against yet: odometry places it
+  } else {
     const core::Pose2 prediction = pose_ * odometry_delta;
     if (at_rest) {
       pose_ = prediction;

@@ -38,7 +38,8 @@ class LocalMapper {
   // The map's frame is the one `start_pose` is given in; the map is centred on it.
   explicit LocalMapper(const LocalMapperOptions& options, const core::Pose2& start_pose = {});
 
-  // `odometry_delta` is the base's motion since the previous scan (in the previous base frame).
+  // `odometry_delta` is the base's motion since the previous scan (in the previous base frame);
+  // for the first scan, since `start_pose`.
   ScanUpdate AddScan(const core::LaserScan& scan, const core::Pose2& odometry_delta,
                      const core::Pose2& scanner_in_base);
 

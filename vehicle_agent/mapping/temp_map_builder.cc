@@ -31,10 +31,9 @@ void TempMapBuilder::Start(const std::string& vehicle_id, int32_t sequence, doub
 BuilderStep TempMapBuilder::AddScan(const core::LaserScan& scan, const core::Pose2& odometry_delta,
                                     const core::Pose2& scanner_in_base) {
   assert(building());
-  // The first scan defines the frame: the odometry before it belongs to no map.
-  const bool first = pending_.trajectory_in_temp.empty();
-  const ScanUpdate update =
-      mapper_->AddScan(scan, first ? core::Pose2() : odometry_delta, scanner_in_base);
+  // Frame T is the vehicle where the anchor was taken: the first scan's odometry_delta places
+  // it there (none when the anchor is that scan's own pose).
+  const ScanUpdate update = mapper_->AddScan(scan, odometry_delta, scanner_in_base);
   pending_.trajectory_in_temp.push_back({scan.stamp_s, update.pose});
   pending_.end_s = std::max(pending_.end_s, scan.stamp_s);
   BuilderStep step{update.pose, update.matched, false};

@@ -54,7 +54,8 @@ class TempMapBuilder {
              const core::Pose2& anchor_in_map);
   bool building() const { return mapper_ != nullptr; }
 
-  // `odometry_delta` is the base's motion since the previous scan.
+  // `odometry_delta` is the base's motion since the previous scan added, or, for the first
+  // scan, since the anchor (none when the anchor is that scan's own pose).
   BuilderStep AddScan(const core::LaserScan& scan, const core::Pose2& odometry_delta,
                       const core::Pose2& scanner_in_base);
 

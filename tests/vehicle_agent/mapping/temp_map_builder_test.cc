@@ -100,7 +100,7 @@ TEST(TempMapBuilderTest, ClosesWhenTheVehicleNearsTheEdgeOrTheTimeIsUp) {
   TempMapBuilder builder(options);
   builder.Start("v1", 1, 0.0, world.VehicleStateAt(0, 0).pose);
   double closed_at = -1;
-  core::Pose2 previous;
+  core::Pose2 previous = world.VehicleStateAt(0, 0).pose;
   while (auto e = simulator.Next()) {
     auto* s = std::get_if<sim::ScanEvent>(&*e);
     if (!s) continue;
@@ -115,6 +115,29 @@ TEST(TempMapBuilderTest, ClosesWhenTheVehicleNearsTheEdgeOrTheTimeIsUp) {
   ASSERT_TRUE(builder.Close(closed_at).has_value());
   EXPECT_FALSE(builder.building());
   EXPECT_FALSE(builder.Close(closed_at).has_value());
+}
+
+// A map anchored a scan before its first scan: placed by its anchor and the odometry since,
+// that scan must be where the vehicle truly was, not where it was at the anchor.
+TEST(TempMapBuilderTest, AMapStartedBeforeItsFirstScanPlacesThatScanByTheOdometry) {
+  const sim::World world = LivingLab();
+  sim::Simulator simulator(&world);
+  std::vector<sim::ScanEvent> scans;
+  while (scans.size() < 2) {
+    auto e = simulator.Next();
+    ASSERT_TRUE(e.has_value());
+    if (auto* s = std::get_if<sim::ScanEvent>(&*e)) scans.push_back(*s);
+  }
+  const core::Pose2 moved = core::Between(scans[0].true_base_pose, scans[1].true_base_pose);
+  ASSERT_GT(std::hypot(moved.x_m, moved.y_m), 0.005);  // the vehicle drives between the scans
+
+  TempMapBuilder split({});
+  split.Start("v1", 2, scans[0].scan.stamp_s, scans[0].true_base_pose);
+  const BuilderStep first = split.AddScan(scans[1].scan, moved, {});
+  const core::Pose2 placed = scans[0].true_base_pose * first.pose_in_temp;
+  EXPECT_NEAR(placed.x_m, scans[1].true_base_pose.x_m, 1e-9);
+  EXPECT_NEAR(placed.y_m, scans[1].true_base_pose.y_m, 1e-9);
+  EXPECT_NEAR(placed.theta_rad, scans[1].true_base_pose.theta_rad, 1e-9);
 }
 
 TEST(TempMapBuilderTest, CropKeepsGeometryConsistent) {
