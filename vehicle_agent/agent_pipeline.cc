@@ -113,13 +113,12 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
        scan.stamp_s - *previous_s > options_.max_scan_gap_s)) {
     // The clock was set back (a map's times must run forward) or no scan came for a while
     // (the map would be bridged blind): this map closes at its last scan, and the change goes
-    // on in a new one.
+    // on in a new one from this scan.
     step.closed_map = builder_.Close(*previous_s);
     ++counters_.temp_maps_split;
-    if (step.divergence.building && !step.divergence.stopped)
-      StartMap(scan.stamp_s, step.pose.pose_in_map);
+    continue_change_ = true;
   }
-  const bool continues = std::exchange(continue_at_next_scan_, false) && step.divergence.building &&
+  const bool continues = std::exchange(continue_change_, false) && step.divergence.building &&
                          !step.divergence.stopped;
   if ((step.divergence.started || continues) && !builder_.building())
     StartMap(scan.stamp_s, step.pose.pose_in_map);
@@ -138,7 +137,7 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
       // from the odometry, whose heading errs by degrees per metre.
       step.closed_map = builder_.Close(scan.stamp_s);
       ++counters_.temp_maps_split;
-      continue_at_next_scan_ = true;
+      continue_change_ = true;
     }
   }
   if (step.divergence.stopped && builder_.building())

@@ -107,9 +107,10 @@ class AgentPipeline {
   core::Pose2 clean_odom_at_builder_;
   std::optional<double> last_scan_stamp_s_;  // of the last valid scan
   int32_t next_sequence_ = 1;
-  // A map closed for its time or area while the change goes on: the next one starts at the
-  // next scan, anchored at that scan's localized pose (its frame T is the vehicle there).
-  bool continue_at_next_scan_ = false;
+  // A map was split while the change goes on (closed for its time or area, or at a scan gap):
+  // the next one starts at the next scan that comes (after a gap, the scan at hand), anchored
+  // at that scan's localized pose, as every map is (its frame T is the vehicle there).
+  bool continue_change_ = false;
   AgentCounters counters_;
   std::optional<CandidateWatch> watch_;  // from the first map on
   std::vector<int64_t> candidates_;      // the last set given
