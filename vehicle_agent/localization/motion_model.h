@@ -19,11 +19,12 @@ namespace fleetmap::vehicle_agent {
 
 // The alphas are variance coefficients, as in the book and AMCL's odom_alpha1..4 (whose
 // default 0.2, i.e. a 45% standard deviation, suits slipping wheels; our defaults describe
-// an AGV's encoders with margin: about 3x the standard deviations the simulator applies,
-// docs/localization.md).
+// an AGV's encoders with margin: about 3x the standard deviations the simulator applies, and
+// a heading that turns by up to 0.06 rad per metre driven, as uncalibrated wheel diameters
+// and the SLAM benchmark logs' odometry do, docs/localization.md).
 struct MotionModelOptions {
   double alpha1_rot_from_rot = 0.004;      // rad^2 per rad^2 turned, >= 0 (sd 6% of a turn)
-  double alpha2_rot_from_trans = 0.001;    // rad^2 per m^2 driven, >= 0 (sd 0.03 rad per m)
+  double alpha2_rot_from_trans = 0.004;    // rad^2 per m^2 driven, >= 0 (sd 0.063 rad per m)
   double alpha3_trans_from_trans = 0.004;  // m^2 per m^2 driven, >= 0 (sd 6% of the distance)
   double alpha4_trans_from_rot = 0.0003;   // m^2 per rad^2 turned, >= 0 (sd 1.7 cm per rad)
   // Sideways slip, m^2 per m^2 driven, >= 0 (nav2's omni alpha5). Not in the book's model:
