@@ -96,15 +96,23 @@ Assessment Aggregator::ByLines(const AlignmentInput& in, const std::vector<Eigen
 }
 
 Assessment Aggregator::ByCells(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
-                               double before) const {
+                               double before, CellAlignment* cells) const {
   Assessment c;
-  const CellAlignment cells =
-      AlignCells(features_, in.temp_points, in.anchor, options_.cell_alignment);
+  *cells = AlignCells(features_, in.temp_points, in.anchor, options_.cell_alignment);
   const double after =
-      ExplainedFraction(features_, PlacePoints(points, cells.correction * in.anchor));
-  c.confidence = AssessCellAlignment(cells, before, after, options_.confidence);
-  c.alignment = WithCorrection(in, features_, options_.alignment, cells.correction);
+      ExplainedFraction(features_, PlacePoints(points, cells->correction * in.anchor));
+  c.confidence = AssessCellAlignment(*cells, before, after, options_.confidence);
+  c.alignment = WithCorrection(in, features_, options_.alignment, cells->correction);
   return c;
+}
+
+void Aggregator::CheckLinesAmongCellPeaks(const AlignmentInput& in, const CellAlignment& cells,
+                                          Assessment& lines) const {
+  const CellAlignmentOptions& o = options_.cell_alignment;
+  if (cells.at_edge || cells.distinctness >= options_.confidence.min_distinctness) return;
+  const double relative = cells.Relative(
+      CellScoreAt(features_, in.temp_points, in.anchor, lines.alignment.correction, o));
+  RejectBelowCellRival(relative, o.lines_min_relative_score, lines.confidence);
 }
 
 Assessment Aggregator::Assess(const core::TempMap& map) const {
@@ -123,11 +131,14 @@ Assessment Aggregator::Assess(const core::TempMap& map) const {
   const double before = ExplainedFraction(features_, PlacePoints(points, in.anchor));
   const CellAlignmentUse use = options_.cell_alignment.use;
   const bool cells_first = use == CellAlignmentUse::kFirst;
-  Assessment tried = cells_first ? ByCells(in, points, before) : ByLines(in, points, before);
+  CellAlignment cells;
+  Assessment tried =
+      cells_first ? ByCells(in, points, before, &cells) : ByLines(in, points, before);
   if (!tried.confidence.accepted() && use != CellAlignmentUse::kOff) {
-    tried = Either(std::move(tried),
-                   cells_first ? ByLines(in, points, before) : ByCells(in, points, before),
-                   cells_first);
+    Assessment second =
+        cells_first ? ByLines(in, points, before) : ByCells(in, points, before, &cells);
+    if (cells_first) CheckLinesAmongCellPeaks(in, cells, second);
+    tried = Either(std::move(tried), std::move(second), cells_first);
   } else if (cells_first) {
     tried.confidence.explanation = "aligned by cells";
   }

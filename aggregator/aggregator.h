@@ -142,7 +142,11 @@ class Aggregator {
   Assessment ByLines(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
                      double before) const;
   Assessment ByCells(const AlignmentInput& in, const std::vector<Eigen::Vector2d>& points,
-                     double before) const;
+                     double before, CellAlignment* cells) const;
+  // Where the cells found another pose almost as good, rejects the lines' correction that
+  // chose a pose the cells score lower than such a rival (CellAlignmentOptions).
+  void CheckLinesAmongCellPeaks(const AlignmentInput& in, const CellAlignment& cells,
+                                Assessment& lines) const;
 
   AggregatorOptions options_;
   StaticMapFeatures features_;

@@ -163,4 +163,14 @@ AlignmentConfidence AssessCellAlignment(const CellAlignment& cells, double expla
   return c;
 }
 
+void RejectBelowCellRival(double relative, double min_relative, AlignmentConfidence& lines) {
+  if (!lines.accepted() || relative >= min_relative) return;
+  lines.reason = RejectReason::kAmbiguousShift;
+  lines.explanation = Format(
+      "the pose fits the cells worse than their rival: %.2f of the way from the window's "
+      "lowest score to its best < %.2f",
+      relative, min_relative);
+  lines.score = 0.0;
+}
+
 }  // namespace fleetmap::aggregator

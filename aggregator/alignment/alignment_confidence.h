@@ -81,4 +81,10 @@ AlignmentConfidence AssessAlignment(const AlignmentResult& alignment, double res
 AlignmentConfidence AssessCellAlignment(const CellAlignment& cells, double explained_before,
                                         double explained_after, const ConfidenceOptions& options);
 
+// The lines' correction, accepted by its own limits, judged again where the cells found
+// another pose almost as good: `relative` is where the lines' pose scores in the cells'
+// window (CellAlignment::Relative); below `min_relative` it fits worse than the rival that
+// made the cells ambiguous, and the map is ambiguous (kAmbiguousShift).
+void RejectBelowCellRival(double relative, double min_relative, AlignmentConfidence& lines);
+
 }  // namespace fleetmap::aggregator

@@ -76,6 +76,8 @@ core::Status CellAlignmentOptions::Validate() const {
   if (max_points < 10) return core::InvalidArgument("cell_alignment.max_points must be >= 10");
   if (!(rival_separation_m > 0) || !(rival_separation_rad > 0))
     return core::InvalidArgument("cell_alignment.rival_separation_* must be > 0");
+  if (!(lines_min_relative_score >= 0 && lines_min_relative_score <= 1))
+    return core::InvalidArgument("cell_alignment.lines_min_relative_score must be in [0, 1]");
   return core::OkStatus();
 }
 
@@ -127,6 +129,8 @@ CellAlignment AlignCells(const StaticMapFeatures& f,
       }
   r.at_edge = std::abs(best_x) == w.n || std::abs(best_y) == w.n ||
               (w.turns > 0 && std::abs(best_t) == w.turns);
+  r.search_best = step_best;
+  r.search_lowest = lowest;
   const double rise = step_best - lowest;
   r.distinctness = rise > 0 ? (step_best - rival) / rise : 0.0;
 
@@ -150,6 +154,14 @@ CellAlignment AlignCells(const StaticMapFeatures& f,
   r.score = score;
   r.at_anchor = Score(f, all, core::Pose2());
   return r;
+}
+
+double CellScoreAt(const StaticMapFeatures& f, const std::vector<Eigen::Vector2d>& points_in_temp,
+                   const core::Pose2& anchor, const core::Pose2& correction,
+                   const CellAlignmentOptions& o) {
+  const std::vector<Eigen::Vector2d> some =
+      Subsample(PlacePoints(points_in_temp, anchor), o.max_points);
+  return Score(f, some, correction);
 }
 
 }  // namespace fleetmap::aggregator

@@ -36,6 +36,11 @@ struct CellAlignmentOptions {
   // Another local peak at least this far away (metres, or radians of turn) is a rival.
   double rival_separation_m = 0.15;
   double rival_separation_rad = 1.5 * M_PI / 180;
+  // Where the cells find another pose almost as good, the lines may choose between the
+  // poses that fit, never a pose that fits worse: their pose must score at least this far
+  // from the window's lowest score to its best (a rival within 1 - min_distinctness of the
+  // best scores at least that much), else the map is ambiguous. 0 takes any lines' pose.
+  double lines_min_relative_score = 0.7;
   core::Status Validate() const;
 };
 
@@ -48,6 +53,14 @@ struct CellAlignment {
   // almost as well (a corridor with nothing across it), 0 for a flat score.
   double distinctness = 0.0;
   bool at_edge = false;  // the best pose lies on the window's border
+  // The search's best and lowest scores (on the subsampled points, before refinement).
+  double search_best = 0.0;
+  double search_lowest = 0.0;
+  // Where `score_at_pose` (CellScoreAt) lies from the lowest (0) to the best (1).
+  double Relative(double score_at_pose) const {
+    const double rise = search_best - search_lowest;
+    return rise > 0 ? (score_at_pose - search_lowest) / rise : 0.0;
+  }
 };
 
 // `points_in_temp`: the temporary map's surface cell centres in its frame T; `anchor`: T in
@@ -55,5 +68,11 @@ struct CellAlignment {
 CellAlignment AlignCells(const StaticMapFeatures& features,
                          const std::vector<Eigen::Vector2d>& points_in_temp,
                          const core::Pose2& anchor, const CellAlignmentOptions& options);
+
+// The search's score of the pose `correction * anchor`, on the same subsample of points, to
+// judge another method's pose against the search's (CellAlignment::Relative).
+double CellScoreAt(const StaticMapFeatures& features,
+                   const std::vector<Eigen::Vector2d>& points_in_temp, const core::Pose2& anchor,
+                   const core::Pose2& correction, const CellAlignmentOptions& options);
 
 }  // namespace fleetmap::aggregator

@@ -128,7 +128,8 @@ core::Status ReadMerge(const YamlReader& r, const YAML::Node& n, MergeOptions& o
 
 core::Status ReadCellAlignment(const YamlReader& r, const YAML::Node& n, CellAlignmentOptions& o) {
   const std::string s = "aggregator.cell_alignment";
-  FLEETMAP_RETURN_IF_ERROR(OnlyKeys(r, n, s, {"use", "range_m", "range_deg"}));
+  FLEETMAP_RETURN_IF_ERROR(
+      OnlyKeys(r, n, s, {"use", "range_m", "range_deg", "lines_min_relative_score"}));
   if (!n) return core::OkStatus();
   if (n["use"]) {
     std::string use = CellAlignmentUseName(o.use);
@@ -141,7 +142,7 @@ core::Status ReadCellAlignment(const YamlReader& r, const YAML::Node& n, CellAli
   double range_deg = o.range_rad * 180 / M_PI;
   FLEETMAP_RETURN_IF_ERROR(Read(r, n, s, "range_deg", range_deg));
   o.range_rad = range_deg * M_PI / 180;
-  return core::OkStatus();
+  return Read(r, n, s, "lines_min_relative_score", o.lines_min_relative_score);
 }
 
 core::Status ReadAggregator(const YamlReader& r, const YAML::Node& n, AggregatorOptions& o) {

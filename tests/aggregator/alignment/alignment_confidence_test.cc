@@ -81,6 +81,24 @@ TEST(AlignmentConfidenceTest, AnotherPeakAlmostAsHighIsAmbiguous) {
 }
 
 // Two rows of points 0.3 m apart, and a wall: each row fits it at its own shift, equally well.
+// The lines' correction where the cells found a rival: below the rival's score it is
+// ambiguous, at or above it it stands, and a correction already rejected keeps its reason.
+TEST(AlignmentConfidenceTest, LinesThatFitTheCellsWorseThanTheirRivalAreAmbiguous) {
+  AlignmentConfidence lines;
+  lines.score = 0.8;
+  RejectBelowCellRival(0.75, 0.7, lines);
+  EXPECT_TRUE(lines.accepted());
+  EXPECT_EQ(lines.score, 0.8);
+  RejectBelowCellRival(0.4, 0.7, lines);
+  EXPECT_EQ(lines.reason, RejectReason::kAmbiguousShift);
+  EXPECT_NE(lines.explanation.find("0.40"), std::string::npos) << lines.explanation;
+  EXPECT_EQ(lines.score, 0.0);
+  AlignmentConfidence worse;
+  worse.reason = RejectReason::kOverlapWorse;
+  RejectBelowCellRival(0.1, 0.7, worse);
+  EXPECT_EQ(worse.reason, RejectReason::kOverlapWorse);
+}
+
 TEST(OverlapSearchTest, TwoShiftsThatFitEquallyWellAreNotDistinct) {
   auto f = StaticMapFeatures::Compute(testing::HallMap());
   ASSERT_TRUE(f.ok());

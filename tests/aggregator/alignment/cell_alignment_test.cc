@@ -127,6 +127,41 @@ TEST_F(CellAlignmentTest, TheAggregatorAlignsALineFreeMapByItsCells) {
   EXPECT_EQ(with->store().version(), 1u);
 }
 
+// A corridor 2 m wide along x, the whole 20 m of the grid, with nothing across it: every
+// shift along it fits alike, a shift across it does not. Unknown outside its walls.
+core::OccupancyGrid Corridor() {
+  core::OccupancyGrid grid(core::GridGeometry(kRes, testing::kHallCells, testing::kHallCells));
+  for (int y = 0; y < testing::kHallCells; ++y)
+    for (int x = 0; x < testing::kHallCells; ++x) {
+      const double wy = grid.geometry().CellCenter({x, y}).y();
+      grid.SetState({x, y}, std::abs(wy - 8.0) < kRes / 2 || std::abs(wy - 10.0) < kRes / 2
+                                ? core::CellState::kOccupied
+                            : wy > 8.0 && wy < 10.0 ? core::CellState::kFree
+                                                    : core::CellState::kUnknown);
+    }
+  return grid;
+}
+
+// Another method's pose is judged by where it scores in the search's window.
+TEST(CellAlignmentRivalTest, APoseAlongACorridorFitsAsTheBestAndOneAcrossItDoesNot) {
+  const core::OccupancyGrid grid = Corridor();
+  auto features = StaticMapFeatures::Compute(grid);
+  ASSERT_TRUE(features.ok());
+  std::vector<Eigen::Vector2d> walls;  // in the map's frame T, the anchor at (10, 9)
+  for (double x = -2.0; x <= 2.0; x += kRes) walls.insert(walls.end(), {{x, -1.0}, {x, 1.0}});
+  const core::Pose2 anchor(10.0, 9.0, 0.0);
+  const CellAlignmentOptions o;
+  const CellAlignment c = AlignCells(*features, walls, anchor, o);
+  EXPECT_LT(c.distinctness, 0.3);  // ambiguous along the corridor
+  const auto relative = [&](const core::Pose2& correction) {
+    return c.Relative(CellScoreAt(*features, walls, anchor, correction, o));
+  };
+  EXPECT_NEAR(relative({}), 1.0, 0.02);
+  EXPECT_GE(relative({0.2, 0.0, 0.0}), o.lines_min_relative_score);
+  EXPECT_LT(relative({0.0, 0.15, 0.0}), o.lines_min_relative_score);
+  EXPECT_LT(relative({0.0, 0.0, 2.0 * M_PI / 180}), o.lines_min_relative_score);
+}
+
 TEST(CellAlignmentOptionsTest, BadOptionsAreNamed) {
   CellAlignmentOptions o;
   EXPECT_TRUE(o.Validate().ok());
@@ -135,6 +170,9 @@ TEST(CellAlignmentOptionsTest, BadOptionsAreNamed) {
   o = CellAlignmentOptions();
   o.range_m = -1;
   EXPECT_NE(o.Validate().message().find("range_m"), std::string::npos);
+  o = CellAlignmentOptions();
+  o.lines_min_relative_score = 1.5;
+  EXPECT_NE(o.Validate().message().find("lines_min_relative_score"), std::string::npos);
   AggregatorOptions a;
   a.cell_alignment.max_points = 1;
   EXPECT_FALSE(a.Validate().ok());

@@ -65,6 +65,7 @@ TEST(AggregatorNodeConfigTest, ThePackagedFileHoldsTheDefaults) {
   EXPECT_EQ(a.use, ad.use);
   EXPECT_EQ(a.range_m, ad.range_m);
   EXPECT_NEAR(a.range_rad, ad.range_rad, 1e-12);
+  EXPECT_EQ(a.lines_min_relative_score, ad.lines_min_relative_score);
   EXPECT_EQ(c->aggregator.store.retained_deltas, d.aggregator.store.retained_deltas);
   EXPECT_EQ(c->aggregator.store.tiles.tile_size_cells, d.aggregator.store.tiles.tile_size_cells);
   EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges,
@@ -81,7 +82,8 @@ aggregator:
   merge: {confirmations: 1, confirm_min_gap_s: 5, confirm_max_gap_s: 40, static_clearance_m: 0.08,
           confirm_by_watch: true, watch_join_s: 0.5, wall_offset_window_m: 0.2,
           held_wall_clearance_m: 0.15}
-  cell_alignment: {use: where_lines_fail, range_m: 0.5, range_deg: 4}
+  cell_alignment: {use: where_lines_fail, range_m: 0.5, range_deg: 4,
+                   lines_min_relative_score: 0.5}
   store: {retained_deltas: 3}
   persistence: {snapshot_every_merges: 7}
 )",
@@ -105,6 +107,7 @@ aggregator:
   EXPECT_EQ(c->aggregator.cell_alignment.use, CellAlignmentUse::kWhereLinesFail);
   EXPECT_EQ(c->aggregator.cell_alignment.range_m, 0.5);
   EXPECT_NEAR(c->aggregator.cell_alignment.range_rad, 4 * M_PI / 180, 1e-12);
+  EXPECT_EQ(c->aggregator.cell_alignment.lines_min_relative_score, 0.5);
   EXPECT_EQ(c->aggregator.store.retained_deltas, 3);
   EXPECT_EQ(c->aggregator.persistence.snapshot_every_merges, 7);
 }
