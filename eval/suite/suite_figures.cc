@@ -134,11 +134,14 @@ double Quantile(std::vector<double> values, double q) {
 core::Result<std::vector<Figure>> SuiteFigures(const std::vector<WorldOutcome>& outcomes) {
   std::vector<Figure> out;
   for (const WorldOutcome& o : outcomes) PerWorld(o, out);
-  FLEETMAP_RETURN_IF_ERROR(AddAggregates(outcomes, "suite", &WorldOutcome::agents, out));
+  // Either pipeline may have been left out (--pipelines); a suite where neither scored a
+  // world is an error, never figures over nothing.
+  const core::Status agents = AddAggregates(outcomes, "suite", &WorldOutcome::agents, out);
   const core::Status truthmaps =
       AddAggregates(outcomes, "suite.truthmaps", &WorldOutcome::truthmaps, out);
-  if (!truthmaps.ok() && truthmaps.code() != core::StatusCode::kFailedPrecondition)
-    return truthmaps;
+  for (const core::Status& s : {agents, truthmaps})
+    if (!s.ok() && s.code() != core::StatusCode::kFailedPrecondition) return s;
+  if (!agents.ok() && !truthmaps.ok()) return agents;
   int unusable = 0;
   for (const WorldOutcome& o : outcomes) unusable += !o.unusable.empty();
   out.push_back({"suite.unusable", double(unusable), "worlds"});

@@ -77,6 +77,22 @@ TEST(SuiteFiguresTest, ASuiteWithoutAnyScoredWorldIsAnError) {
   EXPECT_THAT(figures.status().message(), HasSubstr("no world has a score"));
 }
 
+// The aggregator alone, its vehicles left out (--pipelines truthmaps): its figures, none of
+// the system's.
+TEST(SuiteFiguresTest, ASuiteOfTheTruthmapsPipelineAloneHasItsFigures) {
+  WorldOutcome a = World("a", std::nullopt), b = World("b", std::nullopt);
+  a.truthmaps = Score(0.9);
+  b.truthmaps = Score(0.7);
+  auto figures = SuiteFigures({a, b});
+  ASSERT_TRUE(figures.ok()) << figures.status().ToString();
+  auto f = ByName(*figures);
+  EXPECT_EQ(f["suite.truthmaps.worlds"], 2);
+  EXPECT_DOUBLE_EQ(f["suite.truthmaps.changed_f1.median"], 0.8);
+  EXPECT_EQ(f.count("suite.worlds"), 0u);
+  EXPECT_EQ(f.count("suite.changed_f1.median"), 0u);
+  EXPECT_DOUBLE_EQ(f["suite.world.a.truthmaps.changed_f1"], 0.9);
+}
+
 TEST(SuiteFiguresTest, FigureLinesAreNameValueUnit) {
   EXPECT_EQ(FigureLines({{"suite.worlds", 41, "worlds"}, {"suite.changed_f1.min", 0.5, "ratio"}}),
             "suite.worlds 41 worlds\nsuite.changed_f1.min 0.5 ratio\n");
