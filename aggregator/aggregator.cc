@@ -109,7 +109,10 @@ Assessment Aggregator::ByCells(const AlignmentInput& in, const std::vector<Eigen
 void Aggregator::CheckLinesAmongCellPeaks(const AlignmentInput& in, const CellAlignment& cells,
                                           Assessment& lines) const {
   const CellAlignmentOptions& o = options_.cell_alignment;
-  if (cells.at_edge || cells.distinctness >= options_.confidence.min_distinctness) return;
+  // Only an accepted correction is judged, and only against a rival the cells found.
+  if (!lines.confidence.accepted() || cells.at_edge ||
+      cells.distinctness >= options_.confidence.min_distinctness)
+    return;
   const double relative = cells.Relative(
       CellScoreAt(features_, in.temp_points, in.anchor, lines.alignment.correction, o));
   RejectBelowCellRival(relative, o.lines_min_relative_score, lines.confidence);

@@ -80,7 +80,6 @@ TEST(AlignmentConfidenceTest, AnotherPeakAlmostAsHighIsAmbiguous) {
   EXPECT_TRUE(Judge(a).accepted());
 }
 
-// Two rows of points 0.3 m apart, and a wall: each row fits it at its own shift, equally well.
 // The lines' correction where the cells found a rival: below the rival's score it is
 // ambiguous, at or above it it stands, and a correction already rejected keeps its reason.
 TEST(AlignmentConfidenceTest, LinesThatFitTheCellsWorseThanTheirRivalAreAmbiguous) {
@@ -99,6 +98,7 @@ TEST(AlignmentConfidenceTest, LinesThatFitTheCellsWorseThanTheirRivalAreAmbiguou
   EXPECT_EQ(worse.reason, RejectReason::kOverlapWorse);
 }
 
+// Two rows of points 0.3 m apart, and a wall: each row fits it at its own shift, equally well.
 TEST(OverlapSearchTest, TwoShiftsThatFitEquallyWellAreNotDistinct) {
   auto f = StaticMapFeatures::Compute(testing::HallMap());
   ASSERT_TRUE(f.ok());
