@@ -18,6 +18,10 @@ struct OdometrySample {
   Status Validate() const;
 };
 
+// Whether `covariance` (of x_m, y_m, theta_rad) is finite, symmetric, with a non-negative
+// diagonal and correlations within [-1, 1]: what a pose's uncertainty from outside must be.
+Status ValidatePoseCovariance(const Eigen::Matrix3d& covariance);
+
 // A localized pose in the static map frame with its uncertainty.
 struct PoseEstimate {
   double stamp_s = 0.0;

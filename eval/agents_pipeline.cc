@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "eval/anchor_consistency.h"
 #include "eval/tempmap_drift.h"
 #include "eval/tile_transport.h"
 
@@ -111,6 +112,9 @@ class AgentsPipeline : public Pipeline {
     // map's start, which defines its frame T (as the recorded run's evaluation reads it).
     record.true_origin = world_.VehicleStateAt(v, map.start_s).pose * map.grid.geometry().origin();
     record.anchor_origin = map.PlacedGeometry().origin();
+    if (map.anchor_covariance)
+      record.anchor_nees = AnchorNees(map.anchor_in_map, *map.anchor_covariance,
+                                      world_.VehicleStateAt(v, map.start_s).pose);
     const TempMapDrift drift = BuilderDrift(
         map.trajectory_in_temp, [&](double t) { return world_.VehicleStateAt(v, t).pose; });
     record.drift_m = drift.translation_m;

@@ -14,8 +14,9 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 
 void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m, EvalReport& r) {
   std::vector<double> trans, cells, rot, anchor_cells;
-  std::vector<double> drift_m, drift_deg;
+  std::vector<double> drift_m, drift_deg, nees;
   for (const MergeRecord& m : merges) {
+    if (std::isfinite(m.anchor_nees)) nees.push_back(m.anchor_nees);
     if (std::isfinite(m.drift_m)) drift_m.push_back(m.drift_m);
     if (std::isfinite(m.drift_deg)) drift_deg.push_back(m.drift_deg);
     if (!m.accepted) {
@@ -38,6 +39,7 @@ void ScoreAlignment(const std::vector<MergeRecord>& merges, double resolution_m,
   r.align_translation_cells = Summarize(cells);
   r.align_rotation_deg = Summarize(rot);
   r.anchor_translation_cells = Summarize(anchor_cells);
+  r.anchor_nees = Summarize(nees);
   r.tempmap_drift_m = Summarize(drift_m);
   r.tempmap_drift_deg = Summarize(drift_deg);
 }
@@ -181,6 +183,7 @@ std::string ReportJson(const EvalReport& r,
   AddStats(kv, "alignment.translation_cells", r.align_translation_cells);
   AddStats(kv, "alignment.rotation_deg", r.align_rotation_deg);
   AddStats(kv, "alignment.anchor_translation_cells", r.anchor_translation_cells);
+  AddStats(kv, "alignment.anchor_nees", r.anchor_nees);
   AddStats(kv, "tempmap.drift_m", r.tempmap_drift_m);
   AddStats(kv, "tempmap.drift_deg", r.tempmap_drift_deg);
   kv["detection.changes_seen"] = r.changes_seen;

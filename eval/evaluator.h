@@ -31,6 +31,8 @@ struct EvalReport {
   SummaryStats align_translation_m, align_translation_cells, align_rotation_deg;
   // The same merges' placement by their anchors alone (no correction), cells.
   SummaryStats anchor_translation_cells;
+  // MergeRecord::anchor_nees over every map that sent a covariance (accepted or not).
+  SummaryStats anchor_nees;
   // How far the vehicles' builders drifted within each map, accepted or not (count 0 where
   // the run does not know).
   SummaryStats tempmap_drift_m, tempmap_drift_deg;

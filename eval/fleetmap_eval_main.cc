@@ -218,6 +218,10 @@ int WriteResults(const Args& args, const sim::World& world, const sim::Simulator
   Figure(name, "align_trans_median_cells", report.align_translation_cells.median, "cells");
   Figure(name, "align_trans_p95_cells", report.align_translation_cells.p95, "cells");
   Figure(name, "anchor_trans_p95_cells", report.anchor_translation_cells.p95, "cells");
+  if (report.anchor_nees.count > 0) {  // only where the vehicles sent their covariance
+    Figure(name, "anchor_nees_median", report.anchor_nees.median, "ratio");
+    Figure(name, "anchor_nees_p95", report.anchor_nees.p95, "ratio");
+  }
   Figure(name, "align_rot_p95_deg", report.align_rotation_deg.p95, "deg");
   Figure(name, "detect_latency_median_s", report.detection_latency_s.median, "s");
   Figure(name, "align_trans_max_cells", report.align_translation_cells.max, "cells");

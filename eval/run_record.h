@@ -36,6 +36,10 @@ struct MergeRecord {
   // does not know (perfect maps, a recorded run).
   double drift_m = std::nan("");
   double drift_deg = std::nan("");
+  // How the anchor's true error (x, y, theta in the static frame) compares with the
+  // covariance the vehicle sent with the map: e' C^-1 e, on average 3 and below 7.81 for 95 %
+  // of maps where the localizer knows how sure it is. NaN where no covariance travelled.
+  double anchor_nees = std::nan("");
   std::vector<LineMatchRow> lines;
   int cells_added = 0;
   int cells_removed = 0;

@@ -29,6 +29,9 @@ core::TempMap SampleTempMap(int width, int height, int32_t sequence) {
   map.vehicle_id = "vehicle_a";
   map.sequence = sequence;
   map.anchor_in_map = core::Pose2(12.5, 4.25, 0.3);
+  Eigen::Matrix3d covariance;  // 2 cm, 1 degree, x and y a little correlated
+  covariance << 4e-4, 1e-4, 0.0, 1e-4, 4e-4, 0.0, 0.0, 0.0, 3e-4;
+  map.anchor_covariance = covariance;
   map.grid = PatternGrid(width, height, core::Pose2(-1.5, -2.0, 0.0));
   map.start_s = 1700000000.5;
   map.end_s = 1700000012.25;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/io/crc32.h"
+#include "core/odometry.h"
 #include "lcmtypes/convert.h"
 
 namespace fleetmap::lcmtypes {
@@ -58,6 +59,9 @@ fleetmap::tempmap_tile_t ToMessage(const core::TempMapTile& t, int64_t utime) {
   m.tile_index = t.index;
   m.tile_count = t.count;
   m.anchor_pose = ToMessage(t.anchor_in_map);
+  m.has_anchor_covariance = t.anchor_covariance.has_value();
+  for (int i = 0; i < 9; ++i)
+    m.anchor_covariance[i] = t.anchor_covariance ? (*t.anchor_covariance)(i / 3, i % 3) : 0.0;
   m.grid_origin = ToMessage(t.grid_origin);
   m.resolution_m = static_cast<float>(t.resolution_m);
   m.width_cells = t.width_cells;
@@ -79,6 +83,12 @@ core::Result<core::TempMapTile> FromMessage(const fleetmap::tempmap_tile_t& m) {
   t.grid_origin = FromMessage(m.grid_origin);
   if (!t.anchor_in_map.IsFinite() || !t.grid_origin.IsFinite())
     return core::InvalidArgument("temporary map anchor or grid origin is not finite");
+  if (m.has_anchor_covariance) {
+    Eigen::Matrix3d c;
+    for (int i = 0; i < 9; ++i) c(i / 3, i % 3) = m.anchor_covariance[i];
+    FLEETMAP_RETURN_IF_ERROR(core::ValidatePoseCovariance(c).WithContext("temporary map anchor"));
+    t.anchor_covariance = c;
+  }
   t.resolution_m = SnapResolution(m.resolution_m);
   t.width_cells = m.width_cells;
   t.height_cells = m.height_cells;

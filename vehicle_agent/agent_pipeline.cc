@@ -80,9 +80,10 @@ void AgentPipeline::WatchCandidates(const core::LaserScan& scan, const core::Pos
   watch_->Observe(scan, pose.pose_in_map * options_.scanner_in_base);
 }
 
-void AgentPipeline::StartMap(double stamp_s, const core::Pose2& anchor) {
+void AgentPipeline::StartMap(double stamp_s, const core::PoseEstimate& anchor) {
   builder_ = TempMapBuilder(options_.builder);
-  builder_.Start(options_.vehicle_id, next_sequence_++, stamp_s, anchor);
+  builder_.Start(options_.vehicle_id, next_sequence_++, stamp_s, anchor.pose_in_map,
+                 anchor.covariance);
   clean_odom_at_builder_ = localizer_.clean_odometry();  // the anchor is the pose at this scan
   ++counters_.temp_maps_started;
 }
@@ -121,7 +122,7 @@ AgentStep AgentPipeline::AddScan(const core::LaserScan& scan) {
   const bool continues = std::exchange(continue_change_, false) && step.divergence.building &&
                          !step.divergence.stopped;
   if ((step.divergence.started || continues) && !builder_.building())
-    StartMap(scan.stamp_s, step.pose.pose_in_map);
+    StartMap(scan.stamp_s, step.pose);
   if (builder_.building() && step.divergence.accepted && valid) {
     // From the localizer's clean odometry (a jump the tracker refused must not tear the
     // temporary map either), since the anchor or the map's last scan: a scan left out still

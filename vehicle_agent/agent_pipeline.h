@@ -91,7 +91,7 @@ class AgentPipeline {
   const AgentPipelineOptions& options() const { return options_; }
 
  private:
-  void StartMap(double stamp_s, const core::Pose2& anchor);
+  void StartMap(double stamp_s, const core::PoseEstimate& anchor);
   void WatchCandidates(const core::LaserScan& scan, const core::PoseEstimate& pose);
   // Position sigma within candidate_watch_max_sigma_m: beams may be judged against single
   // cells, and a map opened at start-up may be anchored.

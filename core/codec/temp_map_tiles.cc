@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/odometry.h"
+
 namespace fleetmap::core {
 
 TileOptions TempMapTileOptions(int tile_size_cells) {
@@ -23,6 +25,7 @@ std::vector<TempMapTile> SplitTempMap(const TempMap& map, const TileOptions& opt
     t.count = static_cast<int32_t>(encoded.size());
     t.anchor_in_map = map.anchor_in_map;
     t.grid_origin = map.grid.geometry().origin();
+    t.anchor_covariance = map.anchor_covariance;
     t.resolution_m = g.resolution_m();
     t.width_cells = g.width();
     t.height_cells = g.height();
@@ -66,6 +69,9 @@ Status TempMapAssembler::CheckAlone(const TempMapTile& t) const {
   if (!std::isfinite(t.start_s) || !std::isfinite(t.end_s) || t.end_s < t.start_s) {
     return InvalidArgument("temporary map times are not finite or out of order");
   }
+  if (t.anchor_covariance)
+    FLEETMAP_RETURN_IF_ERROR(
+        ValidatePoseCovariance(*t.anchor_covariance).WithContext("temporary map anchor"));
   return OkStatus();
 }
 
@@ -73,13 +79,19 @@ namespace {
 bool SamePose(const Pose2& a, const Pose2& b) {
   return a.x_m == b.x_m && a.y_m == b.y_m && a.theta_rad == b.theta_rad;
 }
+bool SameCovariance(const std::optional<Eigen::Matrix3d>& a,
+                    const std::optional<Eigen::Matrix3d>& b) {
+  return a.has_value() == b.has_value() && (!a || *a == *b);
+}
 }  // namespace
 
 Status TempMapAssembler::CheckSameMap(const TempMapTile& a, const TempMapTile& b) {
-  const bool same =
-      a.count == b.count && a.resolution_m == b.resolution_m && a.width_cells == b.width_cells &&
-      a.height_cells == b.height_cells && SamePose(a.anchor_in_map, b.anchor_in_map) &&
-      SamePose(a.grid_origin, b.grid_origin) && a.start_s == b.start_s && a.end_s == b.end_s;
+  const bool same = a.count == b.count && a.resolution_m == b.resolution_m &&
+                    a.width_cells == b.width_cells && a.height_cells == b.height_cells &&
+                    SamePose(a.anchor_in_map, b.anchor_in_map) &&
+                    SamePose(a.grid_origin, b.grid_origin) &&
+                    SameCovariance(a.anchor_covariance, b.anchor_covariance) &&
+                    a.start_s == b.start_s && a.end_s == b.end_s;
   return same ? OkStatus() : InvalidArgument("tile disagrees with the other tiles of its map");
 }
 
@@ -116,6 +128,7 @@ TempMap TempMapAssembler::Assemble(const Pending& p) const {
   map.vehicle_id = h.vehicle_id;
   map.sequence = h.sequence;
   map.anchor_in_map = h.anchor_in_map;
+  map.anchor_covariance = h.anchor_covariance;
   map.grid =
       OccupancyGrid(GridGeometry(h.resolution_m, h.width_cells, h.height_cells, h.grid_origin));
   for (const auto& [index, frame] : p.frames) (void)ApplyFrame(frame, map.grid);  // checked

@@ -22,6 +22,7 @@ struct TempMapTile {
   // The aggregator turns a map about its anchor: both travel, not only the placed corner.
   Pose2 anchor_in_map;  // localized vehicle pose where the map was started
   Pose2 grid_origin;    // the grid's cell (0, 0) corner in the map's frame T
+  std::optional<Eigen::Matrix3d> anchor_covariance;  // TempMap::anchor_covariance
   Pose2 corner_in_map() const { return anchor_in_map * grid_origin; }
   double resolution_m = 0.0;
   int32_t width_cells = 0, height_cells = 0;  // the whole temporary map

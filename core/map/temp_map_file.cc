@@ -1,6 +1,7 @@
 #include "core/map/temp_map_file.h"
 
 #include <cstring>
+#include <string>
 
 #include "core/codec/map_codec.h"
 #include "core/io/byte_io.h"
@@ -11,7 +12,11 @@ namespace fleetmap::core {
 namespace {
 
 constexpr uint8_t kMagic[4] = {'F', 'M', 'T', 'M'};
-constexpr uint8_t kVersion = 1;
+// Version 2 keeps the anchor and the grid's origin in the map's frame apart (the aggregator
+// turns a map about its anchor, and the anchor's covariance is the vehicle's) and adds the
+// covariance; files of version 1 (the placed corner only) still read, without it.
+constexpr uint8_t kVersion = 2;
+constexpr uint8_t kVersionWithoutCovariance = 1;
 constexpr size_t kMaxIdBytes = 64;
 constexpr int64_t kMaxFileBytes = 256 << 20;
 
@@ -25,13 +30,18 @@ std::vector<uint8_t> EncodeTempMap(const TempMap& map) {
   w.U32(static_cast<uint32_t>(map.vehicle_id.size()));
   w.Bytes(reinterpret_cast<const uint8_t*>(map.vehicle_id.data()), map.vehicle_id.size());
   w.I32(map.sequence);
-  const Pose2 corner = map.PlacedGeometry().origin();
-  w.F64(corner.x_m);
-  w.F64(corner.y_m);
-  w.F64(corner.theta_rad);
+  for (const Pose2& p : {map.anchor_in_map, map.grid.geometry().origin()}) {
+    w.F64(p.x_m);
+    w.F64(p.y_m);
+    w.F64(p.theta_rad);
+  }
   w.F64(map.grid.geometry().resolution_m());
   w.F64(map.start_s);
   w.F64(map.end_s);
+  w.U8(map.anchor_covariance ? 1 : 0);
+  if (map.anchor_covariance)
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) w.F64((*map.anchor_covariance)(i, j));
   CodecOptions codec;
   codec.packing = CellPacking::kLogOddsInt8;
   const std::vector<uint8_t> frame =
@@ -49,7 +59,10 @@ Result<TempMap> DecodeTempMap(const uint8_t* data, size_t size) {
   }
   ByteReader r(data, size - 4);
   if (std::memcmp(r.Bytes(4), kMagic, 4) != 0) return DataLoss("not a temporary map file");
-  if (r.U8() != kVersion) return Unimplemented("temporary map file version not supported");
+  const uint8_t version = r.U8();
+  if (version != kVersion && version != kVersionWithoutCovariance)
+    return Unimplemented("temporary map file version " + std::to_string(version) +
+                         " not supported");
   const uint32_t id_size = r.U32();
   if (id_size == 0 || id_size > kMaxIdBytes) return DataLoss("vehicle id length out of range");
   const uint8_t* id = r.Bytes(id_size);
@@ -57,17 +70,34 @@ Result<TempMap> DecodeTempMap(const uint8_t* data, size_t size) {
   TempMap map;
   map.vehicle_id.assign(reinterpret_cast<const char*>(id), id_size);
   map.sequence = r.I32();
-  const double x = r.F64(), y = r.F64(), theta = r.F64(), res = r.F64();
+  // Version 1: the placed corner, the grid's origin at the anchor.
+  const double x = r.F64(), y = r.F64(), theta = r.F64();
   map.anchor_in_map = Pose2(x, y, theta);
+  Pose2 grid_origin;
+  if (version >= kVersion) {
+    const double gx = r.F64(), gy = r.F64(), gtheta = r.F64();
+    grid_origin = Pose2(gx, gy, gtheta);
+  }
+  const double res = r.F64();
   map.start_s = r.F64();
   map.end_s = r.F64();
+  if (version >= kVersion) {
+    const uint8_t has_covariance = r.U8();
+    if (has_covariance > 1) return DataLoss("temporary map file: bad covariance flag");
+    if (has_covariance) {
+      Eigen::Matrix3d c;
+      for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) c(i, j) = c(j, i) = r.F64();
+      map.anchor_covariance = c;
+    }
+  }
   const uint32_t frame_size = r.U32();
   const uint8_t* frame = r.Bytes(frame_size);
   if (r.failed() || !frame || r.remaining() != 0)
     return DataLoss("temporary map file is truncated or padded");
   auto decoded = DecodeFrame(frame, frame_size);
   if (!decoded.ok()) return decoded.status().WithContext("temporary map cells");
-  const GridGeometry g(res, decoded->window.width, decoded->window.height);
+  const GridGeometry g(res, decoded->window.width, decoded->window.height, grid_origin);
   FLEETMAP_RETURN_IF_ERROR(g.Validate().WithContext("temporary map file"));
   map.grid = OccupancyGrid(g);
   FLEETMAP_RETURN_IF_ERROR(ApplyFrame(*decoded, map.grid));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/map/map_replica.h"
+#include "eval/anchor_consistency.h"
 #include "eval/recording/lcm_log_events.h"
 #include "eval/recording/sender_attribution.h"
 #include "fleetmap/divergence_t.hpp"
@@ -24,6 +25,7 @@ namespace {
 struct TempMapSeen {
   int64_t first_tile_wall_utime = 0;
   core::Pose2 anchor, grid_origin;
+  std::optional<Eigen::Matrix3d> anchor_covariance;
   double start_s = 0.0, end_s = 0.0;  // simulated
 };
 
@@ -131,6 +133,7 @@ class Reader {
     seen.first_tile_wall_utime = e.wall_utime;
     seen.anchor = tile->anchor_in_map;
     seen.grid_origin = tile->grid_origin;
+    seen.anchor_covariance = tile->anchor_covariance;
     seen.start_s = tile->start_s - options_.epoch_s;
     seen.end_s = tile->end_s - options_.epoch_s;
   }
@@ -158,7 +161,10 @@ class Reader {
                              core::NormalizeAngle(m.anchor.theta_rad + msg->dtheta_rad));
     r.placed_origin = placed * m.grid_origin;
     r.anchor_origin = m.anchor * m.grid_origin;
-    r.true_origin = world_.VehicleStateAt(vehicle->second, m.start_s).pose * m.grid_origin;
+    const core::Pose2 true_anchor = world_.VehicleStateAt(vehicle->second, m.start_s).pose;
+    r.true_origin = true_anchor * m.grid_origin;
+    if (m.anchor_covariance)
+      r.anchor_nees = AnchorNees(m.anchor, *m.anchor_covariance, true_anchor);
     for (const fleetmap::line_match_t& l : msg->matches)
       r.lines.push_back({l.temp_line_id, l.static_line_id, l.distance_diff_px, l.angle_diff_deg});
     r.cells_added = msg->cells_added;

@@ -19,6 +19,7 @@ struct WorldScore {
   // The same merges placed by their anchors alone (before the aggregator's correction); NaN
   // without an accepted merge or in a report that does not give it.
   double anchor_trans_p95_cells = 0.0;
+  double anchor_nees_p95 = 0.0;  // NaN where no map sent its anchor's covariance
   // Truly added cells missed where a candidate was dropped as seen free, of all truly added
   // cells; NaN when nothing was added or the report does not give it.
   double added_lost_seen_free = 0.0;

@@ -91,6 +91,9 @@ inline void ExpectSame(const tempmap_tile_t& a, const tempmap_tile_t& b) {
   EXPECT_EQ(a.tile_index, b.tile_index);
   EXPECT_EQ(a.tile_count, b.tile_count);
   ExpectSame(a.anchor_pose, b.anchor_pose);
+  EXPECT_EQ(a.has_anchor_covariance, b.has_anchor_covariance);
+  for (int i = 0; i < 9; ++i)
+    EXPECT_EQ(a.anchor_covariance[i], b.anchor_covariance[i]) << "index " << i;
   ExpectSame(a.grid_origin, b.grid_origin);
   EXPECT_EQ(a.resolution_m, b.resolution_m);
   EXPECT_EQ(a.width_cells, b.width_cells);

@@ -139,6 +139,10 @@ inline tempmap_tile_t MakeSample<tempmap_tile_t>() {
   t.tile_index = 2;
   t.tile_count = 6;
   t.anchor_pose = MakeSample<pose2d_t>();
+  // 2 cm in x and y, correlated by 0.25; 1 degree in heading.
+  t.has_anchor_covariance = true;
+  const double c[9] = {4e-4, 1e-4, 0.0, 1e-4, 4e-4, 0.0, 0.0, 0.0, 3.05e-4};
+  for (int i = 0; i < 9; ++i) t.anchor_covariance[i] = c[i];
   t.grid_origin = MakeSample<pose2d_t>();
   t.grid_origin.x_m = -3.5;
   t.resolution_m = 0.05f;

@@ -45,6 +45,65 @@ TEST(TransportConvertTest, TempMapSurvivesTheWire) {
   EXPECT_NEAR(done->end_s, 1010.25, 1e-6);
 }
 
+core::Result<core::TempMap> ThroughTheWire(const core::TempMap& original) {
+  core::TempMapAssembler assembler;
+  for (const core::TempMapTile& t : core::SplitTempMap(original)) {
+    auto back = FromMessage(ThroughBytes(ToMessage(t, 42)));
+    if (!back.ok()) return back.status();
+    auto done = assembler.Add(*back);
+    if (!done.ok()) return done.status();
+    if (done->has_value()) return **done;
+  }
+  return core::DataLoss("the map was not completed");
+}
+
+TEST(TransportConvertTest, TheAnchorsCovarianceTravelsWithTheMap) {
+  core::TempMap original = Sample();
+  Eigen::Matrix3d c;
+  c << 4e-4, 1e-4, 2e-5, 1e-4, 9e-4, -3e-5, 2e-5, -3e-5, 3e-4;
+  original.anchor_covariance = c;
+  auto done = ThroughTheWire(original);
+  ASSERT_TRUE(done.ok()) << done.status().ToString();
+  ASSERT_TRUE(done->anchor_covariance.has_value());
+  EXPECT_EQ(*done->anchor_covariance, c);  // doubles on the wire: exactly
+}
+
+TEST(TransportConvertTest, AMapWithoutCovarianceArrivesWithoutOne) {
+  auto done = ThroughTheWire(Sample());
+  ASSERT_TRUE(done.ok()) << done.status().ToString();
+  EXPECT_FALSE(done->anchor_covariance.has_value());
+}
+
+TEST(TransportConvertTest, ACovarianceThatCannotBeOneIsRefused) {
+  const auto tiles = core::SplitTempMap(Sample());
+  auto msg = ToMessage(tiles[0], 1);
+  msg.has_anchor_covariance = true;
+  for (int i = 0; i < 9; ++i) msg.anchor_covariance[i] = i % 4 ? 0.0 : 1e-4;
+  EXPECT_TRUE(FromMessage(msg).ok());
+  msg.anchor_covariance[4] = -1e-4;  // a negative variance
+  EXPECT_EQ(FromMessage(msg).status().code(), core::StatusCode::kInvalidArgument);
+  msg.anchor_covariance[4] = 1e-4;
+  msg.anchor_covariance[1] = 5e-4;  // not symmetric
+  EXPECT_FALSE(FromMessage(msg).ok());
+  msg.anchor_covariance[3] = 5e-4;  // symmetric, but a correlation of 5
+  EXPECT_FALSE(FromMessage(msg).ok());
+  msg.anchor_covariance[1] = msg.anchor_covariance[3] = 0.0;
+  msg.anchor_covariance[8] = NAN;
+  EXPECT_FALSE(FromMessage(msg).ok());
+}
+
+TEST(TransportConvertTest, TilesOfOneMapMustAgreeOnTheCovariance) {
+  core::TempMap original = Sample();
+  original.grid = core::OccupancyGrid(core::GridGeometry(0.05, 200, 80, core::Pose2(-2, -2, 0)));
+  const auto tiles = core::SplitTempMap(original);
+  ASSERT_GE(tiles.size(), 2u);
+  core::TempMapAssembler assembler;
+  ASSERT_TRUE(assembler.Add(tiles[0]).ok());
+  core::TempMapTile other = tiles[1];
+  other.anchor_covariance = Eigen::Matrix3d::Identity() * 1e-4;
+  EXPECT_FALSE(assembler.Add(other).ok());
+}
+
 TEST(TransportConvertTest, CorruptPayloadAndSizesAreRefused) {
   const auto tiles = core::SplitTempMap(Sample());
   auto msg = ToMessage(tiles[0], 1);

@@ -121,6 +121,23 @@ TEST(AgentPipelineTest, DetectsThePalletAndMapsItWhereItIs) {
   EXPECT_GE(seen, cells - 2);
 }
 
+// Each map carries how sure localization was of its anchor: the covariance of the pose of the
+// scan the map started at, which the aggregator weighs corrections against.
+TEST(AgentPipelineTest, EachMapCarriesTheCovarianceOfItsAnchor) {
+  const DriveResult run = Drive();
+  ASSERT_FALSE(run.maps.empty());
+  for (const core::TempMap& m : run.maps) {
+    ASSERT_TRUE(m.anchor_covariance.has_value()) << "map " << m.sequence;
+    const AgentStep* start = nullptr;
+    for (const AgentStep& s : run.steps)
+      if (s.pose.stamp_s == m.start_s) start = &s;
+    ASSERT_NE(start, nullptr) << "map " << m.sequence;
+    EXPECT_EQ(m.anchor_in_map.x_m, start->pose.pose_in_map.x_m);
+    EXPECT_EQ(*m.anchor_covariance, start->pose.covariance);
+    EXPECT_GT((*m.anchor_covariance)(0, 0), 0.0);  // a particle set, never certain
+  }
+}
+
 // A pallet in view from the first scan is part of the past d(t) compares with: d never
 // rises, and only the map every vehicle builds when it starts holds the pallet.
 TEST(AgentPipelineTest, TheVehicleMapsWhatIsInViewWhenItStarts) {

@@ -69,7 +69,7 @@ core::Status Localizer::UpdateMap(const core::OccupancyGrid& map, int32_t versio
 core::Status Localizer::InitializeAt(const core::Pose2& pose_in_map,
                                      const Eigen::Matrix3d& covariance) {
   if (!pose_in_map.IsFinite()) return core::InvalidArgument("initial pose is not finite");
-  FLEETMAP_RETURN_IF_ERROR(ValidatePoseCovariance(covariance));
+  FLEETMAP_RETURN_IF_ERROR(core::ValidatePoseCovariance(covariance));
   global_pending_ = false;
   Restart(SampleAroundPose(pose_in_map, covariance, options_.kld.max_particles, rng_));
   return core::OkStatus();

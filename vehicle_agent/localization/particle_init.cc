@@ -5,15 +5,6 @@
 
 namespace fleetmap::vehicle_agent {
 
-core::Status ValidatePoseCovariance(const Eigen::Matrix3d& c) {
-  if (!c.allFinite()) return core::InvalidArgument("pose covariance is not finite");
-  if ((c - c.transpose()).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + c.norm()))
-    return core::InvalidArgument("pose covariance is not symmetric");
-  if (c(0, 0) < 0 || c(1, 1) < 0 || c(2, 2) < 0)
-    return core::InvalidArgument("pose covariance has a negative variance");
-  return core::OkStatus();
-}
-
 ParticleSet SampleAroundPose(const core::Pose2& mean, const Eigen::Matrix3d& covariance, int count,
                              std::mt19937& rng) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);

@@ -11,9 +11,6 @@
 
 namespace fleetmap::vehicle_agent {
 
-// A usable pose covariance: finite, symmetric, non-negative on the diagonal.
-core::Status ValidatePoseCovariance(const Eigen::Matrix3d& covariance);
-
 // `count` particles drawn from N(mean, covariance); negative eigenvalues (a covariance that
 // is not quite positive semi-definite) are treated as zero. Uniform weights.
 ParticleSet SampleAroundPose(const core::Pose2& mean, const Eigen::Matrix3d& covariance, int count,

@@ -19,12 +19,14 @@ core::Status TempMapBuilderOptions::Validate() const {
 TempMapBuilder::TempMapBuilder(const TempMapBuilderOptions& options) : options_(options) {}
 
 void TempMapBuilder::Start(const std::string& vehicle_id, int32_t sequence, double stamp_s,
-                           const core::Pose2& anchor_in_map) {
+                           const core::Pose2& anchor_in_map,
+                           const std::optional<Eigen::Matrix3d>& anchor_covariance) {
   mapper_ = std::make_unique<LocalMapper>(options_.mapper);  // frame T: the vehicle at start
   pending_ = core::TempMap();
   pending_.vehicle_id = vehicle_id;
   pending_.sequence = sequence;
   pending_.anchor_in_map = anchor_in_map;
+  pending_.anchor_covariance = anchor_covariance;
   pending_.start_s = pending_.end_s = stamp_s;
 }
 

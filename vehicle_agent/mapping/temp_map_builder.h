@@ -50,8 +50,10 @@ class TempMapBuilder {
   explicit TempMapBuilder(const TempMapBuilderOptions& options);
 
   // Starts a map anchored at the vehicle's localized pose.
+  // `anchor_covariance`: how sure localization was of it (travels with the map).
   void Start(const std::string& vehicle_id, int32_t sequence, double stamp_s,
-             const core::Pose2& anchor_in_map);
+             const core::Pose2& anchor_in_map,
+             const std::optional<Eigen::Matrix3d>& anchor_covariance = std::nullopt);
   bool building() const { return mapper_ != nullptr; }
 
   // `odometry_delta` is the base's motion since the previous scan added, or, for the first
