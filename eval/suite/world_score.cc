@@ -60,6 +60,7 @@ core::Result<WorldScore> ReadWorldScore(const std::string& path) {
   }
   s.anchor_trans_p95_cells = Given(report, "alignment.anchor_translation_cells.p95");
   s.anchor_nees_p95 = Given(report, "alignment.anchor_nees.p95");
+  s.localization_p95_m = Given(report, "localization.error_m.p95");
   s.tempmap_drift_p95_m = Given(report, "tempmap.drift_m.p95");
   s.tempmap_drift_p95_deg = Given(report, "tempmap.drift_deg.p95");
   s.added_lost_seen_free = added > 0 ? Given(report, "seen_free.added_missed") / added

@@ -19,7 +19,8 @@ struct WorldScore {
   // The same merges placed by their anchors alone (before the aggregator's correction); NaN
   // without an accepted merge or in a report that does not give it.
   double anchor_trans_p95_cells = 0.0;
-  double anchor_nees_p95 = 0.0;  // NaN where no map sent its anchor's covariance
+  double anchor_nees_p95 = 0.0;     // NaN where no map sent its anchor's covariance
+  double localization_p95_m = 0.0;  // the vehicles' pose error; NaN where the run has none
   // Truly added cells missed where a candidate was dropped as seen free, of all truly added
   // cells; NaN when nothing was added or the report does not give it.
   double added_lost_seen_free = 0.0;

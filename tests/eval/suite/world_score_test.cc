@@ -78,6 +78,22 @@ TEST(WorldScoreTest, TheBuildersDriftIsReadWhereGiven) {
   EXPECT_DOUBLE_EQ(s->tempmap_drift_p95_deg, 0.32);
 }
 
+// How honest the anchors' covariance was, and how well the vehicles were localized: read where
+// a report gives them (agents); a run without them (truthmaps) has none, not 0.
+TEST(WorldScoreTest, TheAnchorsNeesAndTheLocalizationErrorAreReadWhereGiven) {
+  auto without = ReadWorldScore(Write("report_no_nees", kReport));
+  ASSERT_TRUE(without.ok()) << without.status().ToString();
+  EXPECT_TRUE(std::isnan(without->anchor_nees_p95));
+  EXPECT_TRUE(std::isnan(without->localization_p95_m));
+  std::string report = kReport;
+  report.insert(report.find("\"merges.accepted\""),
+                "\"alignment.anchor_nees.p95\": 428.5, \"localization.error_m.p95\": 0.09, ");
+  auto s = ReadWorldScore(Write("report_nees", report));
+  ASSERT_TRUE(s.ok()) << s.status().ToString();
+  EXPECT_DOUBLE_EQ(s->anchor_nees_p95, 428.5);
+  EXPECT_DOUBLE_EQ(s->localization_p95_m, 0.09);
+}
+
 TEST(WorldScoreTest, AReportWithoutAKeyOrNotJsonIsDataLoss) {
   std::string report = kReport;
   report.replace(report.find("\"actor_cells_mapped\""), 20, "\"actors\"");
