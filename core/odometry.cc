@@ -28,9 +28,8 @@ Status ValidatePoseCovariance(const Eigen::Matrix3d& covariance) {
 }
 
 Status PoseEstimate::Validate() const {
-  if (!std::isfinite(stamp_s) || !pose_in_map.IsFinite() || !covariance.allFinite()) {
+  if (!std::isfinite(stamp_s) || !pose_in_map.IsFinite())
     return InvalidArgument("pose estimate has a non-finite field");
-  }
   return ValidatePoseCovariance(covariance);
 }
 

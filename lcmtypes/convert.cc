@@ -82,13 +82,23 @@ core::Result<core::OdometrySample> FromMessage(const fleetmap::odometry_t& m) {
   return o;
 }
 
+void ToRowMajor(const Eigen::Matrix3d& covariance, double (&out)[9]) {
+  for (int i = 0; i < 9; ++i) out[i] = covariance(i / 3, i % 3);
+}
+
+Eigen::Matrix3d FromRowMajor(const double (&in)[9]) {
+  Eigen::Matrix3d c;
+  for (int i = 0; i < 9; ++i) c(i / 3, i % 3) = in[i];
+  return c;
+}
+
 fleetmap::pose_with_covariance_t ToMessage(const core::PoseEstimate& p,
                                            const std::string& vehicle_id) {
   fleetmap::pose_with_covariance_t m;
   m.utime = ToUtime(p.stamp_s);
   m.vehicle_id = vehicle_id;
   m.pose = ToMessage(p.pose_in_map);
-  for (int i = 0; i < 9; ++i) m.covariance[i] = p.covariance(i / 3, i % 3);
+  ToRowMajor(p.covariance, m.covariance);
   m.map_version = p.map_version;
   return m;
 }
@@ -98,7 +108,7 @@ core::Result<core::PoseEstimate> FromMessage(const fleetmap::pose_with_covarianc
   core::PoseEstimate p;
   p.stamp_s = FromUtime(m.utime);
   p.pose_in_map = FromMessage(m.pose);
-  for (int i = 0; i < 9; ++i) p.covariance(i / 3, i % 3) = m.covariance[i];
+  p.covariance = FromRowMajor(m.covariance);
   p.map_version = m.map_version;
   FLEETMAP_RETURN_IF_ERROR(p.Validate().WithContext("pose from " + m.vehicle_id));
   return p;

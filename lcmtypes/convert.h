@@ -46,6 +46,10 @@ core::Result<core::LaserScan> FromMessage(const fleetmap::laser_scan_t& msg);
 fleetmap::odometry_t ToMessage(const core::OdometrySample& odom, const std::string& vehicle_id);
 core::Result<core::OdometrySample> FromMessage(const fleetmap::odometry_t& msg);
 
+// A pose covariance as the messages carry it: 9 doubles, row-major.
+void ToRowMajor(const Eigen::Matrix3d& covariance, double (&out)[9]);
+Eigen::Matrix3d FromRowMajor(const double (&in)[9]);
+
 fleetmap::pose_with_covariance_t ToMessage(const core::PoseEstimate& pose,
                                            const std::string& vehicle_id);
 core::Result<core::PoseEstimate> FromMessage(const fleetmap::pose_with_covariance_t& msg);

@@ -60,8 +60,7 @@ fleetmap::tempmap_tile_t ToMessage(const core::TempMapTile& t, int64_t utime) {
   m.tile_count = t.count;
   m.anchor_pose = ToMessage(t.anchor_in_map);
   m.has_anchor_covariance = t.anchor_covariance.has_value();
-  for (int i = 0; i < 9; ++i)
-    m.anchor_covariance[i] = t.anchor_covariance ? (*t.anchor_covariance)(i / 3, i % 3) : 0.0;
+  ToRowMajor(t.anchor_covariance.value_or(Eigen::Matrix3d::Zero()), m.anchor_covariance);
   m.grid_origin = ToMessage(t.grid_origin);
   m.resolution_m = static_cast<float>(t.resolution_m);
   m.width_cells = t.width_cells;
@@ -84,8 +83,7 @@ core::Result<core::TempMapTile> FromMessage(const fleetmap::tempmap_tile_t& m) {
   if (!t.anchor_in_map.IsFinite() || !t.grid_origin.IsFinite())
     return core::InvalidArgument("temporary map anchor or grid origin is not finite");
   if (m.has_anchor_covariance) {
-    Eigen::Matrix3d c;
-    for (int i = 0; i < 9; ++i) c(i / 3, i % 3) = m.anchor_covariance[i];
+    const Eigen::Matrix3d c = FromRowMajor(m.anchor_covariance);
     FLEETMAP_RETURN_IF_ERROR(core::ValidatePoseCovariance(c).WithContext("temporary map anchor"));
     t.anchor_covariance = c;
   }

@@ -180,7 +180,9 @@ void PublishRound(lcm::LCM& lcm, int round) {
   temp.tile_count = 1;
   temp.anchor_pose = Pose(12.0, 4.0, 0.0);
   temp.has_anchor_covariance = true;  // 2 cm and 1 degree
-  for (int i = 0; i < 9; ++i) temp.anchor_covariance[i] = i % 4 ? 0.0 : (i < 8 ? 4e-4 : 3e-4);
+  std::fill(std::begin(temp.anchor_covariance), std::end(temp.anchor_covariance), 0.0);
+  temp.anchor_covariance[0] = temp.anchor_covariance[4] = 4e-4;  // x, y
+  temp.anchor_covariance[8] = 3e-4;                              // heading
   temp.grid_origin = Pose(-0.8, -0.8, 0.0);
   temp.resolution_m = 0.05f;
   temp.width_cells = 32;
