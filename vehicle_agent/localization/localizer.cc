@@ -77,6 +77,8 @@ core::Status Localizer::InitializeAt(const core::Pose2& pose_in_map,
 
 void Localizer::Restart(ParticleSet particles) {
   particles_ = std::move(particles);
+  // The vehicle's wheels did not change: drawn around what the filter had learnt of them.
+  DrawOdometryScales(particles_, odometry_scale_, options_.odometry_scale, rng_);
   initialized_ = true;
   force_update_ = true;
   moments_ = ComputeMoments(particles_);
@@ -249,8 +251,13 @@ void Localizer::Predict() {
 }
 
 void Localizer::PredictStep(const core::Pose2& delta) {
-  for (Particle& p : particles_)
-    p.pose = SampleMotionModelOdometry(p.pose, delta, options_.motion, rng_);
+  const double translation_m = std::hypot(delta.x_m, delta.y_m);
+  for (Particle& p : particles_) {
+    p.pose = SampleMotionModelOdometry(p.pose, ScaledIncrement(delta, p.odometry_scale),
+                                       options_.motion, rng_);
+    p.odometry_scale =
+        WalkOdometryScale(p.odometry_scale, translation_m, options_.odometry_scale, rng_);
+  }
 }
 
 void Localizer::Weigh(LocalizerStats& stats) {
@@ -275,6 +282,7 @@ void Localizer::Weigh(LocalizerStats& stats) {
 }
 
 void Localizer::Resample() {
+  odometry_scale_ = MeanOdometryScale(particles_);
   ParticleSet resampled = LowVarianceResample(particles_, particles_.size(), rng_);
   const size_t target = static_cast<size_t>(
       KldParticleCount(CountOccupiedBins(resampled, options_.kld), options_.kld));

@@ -115,6 +115,9 @@ class Localizer {
   // The poses a global search found, while they are followed (empty otherwise).
   const PoseHypotheses& hypotheses() const { return hypotheses_; }
   const LocalizerCounters& counters() const { return counters_; }
+  // What the filter has learnt of the odometry's scale: the vehicle's distance per odometry
+  // distance (odometry_scale.h), 1 until the first resampling.
+  double odometry_scale() const { return odometry_scale_; }
   const LocalizerOptions& options() const { return options_; }
   // The odometry pose with every refused increment cut out (OdometryTracker).
   const core::Pose2& clean_odometry() const { return odometry_.clean_pose(); }
@@ -175,7 +178,10 @@ class Localizer {
   bool force_update_ = false;
   std::mt19937 rng_;
   ParticleSet particles_;
-  PoseMoments moments_;               // of the particles at the last filter update
+  PoseMoments moments_;  // of the particles at the last filter update
+  // The particles' weighted mean odometry scale at the last resampling: where a new set's
+  // scales are drawn around (odometry_scale.h).
+  double odometry_scale_ = 1.0;
   core::Pose2 clean_odom_at_update_;  // the tracker's clean odometry then
   OdometryTracker odometry_;
   OdometryPath path_;         // the clean odometry's way since clean_odom_at_update_

@@ -28,6 +28,7 @@ core::Status LocalizerOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(
       CheckOption(max_beams >= 1, "LocalizerOptions.max_beams", max_beams, ">= 1"));
   FLEETMAP_RETURN_IF_ERROR(motion.Validate());
+  FLEETMAP_RETURN_IF_ERROR(odometry_scale.Validate());
   FLEETMAP_RETURN_IF_ERROR(kld.Validate());
   FLEETMAP_RETURN_IF_ERROR(CheckOption(resample_min_neff_ratio > 0 && resample_min_neff_ratio <= 1,
                                        "LocalizerOptions.resample_min_neff_ratio",

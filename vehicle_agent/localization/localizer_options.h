@@ -10,6 +10,7 @@
 #include "vehicle_agent/localization/global_search.h"
 #include "vehicle_agent/localization/likelihood_field.h"
 #include "vehicle_agent/localization/motion_model.h"
+#include "vehicle_agent/localization/odometry_scale.h"
 #include "vehicle_agent/localization/pose_hypotheses.h"
 #include "vehicle_agent/localization/resampling.h"
 
@@ -42,6 +43,7 @@ struct LocalizerOptions {
   int max_beams = 60;
   // --- prediction (sample_motion_model_odometry) ---
   MotionModelOptions motion;
+  OdometryScaleOptions odometry_scale;  // each particle's own odometry scale
   // --- particle count (KLD sampling) and resampling ---
   KldOptions kld;
   // Resample (low variance) when N_eff < ratio * N, (0, 1]. 1 resamples at every update.

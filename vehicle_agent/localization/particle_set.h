@@ -12,6 +12,9 @@ namespace fleetmap::vehicle_agent {
 struct Particle {
   core::Pose2 pose;     // vehicle base in the map frame
   double weight = 1.0;  // normalised over the set after every update
+  // The vehicle's distance per odometry distance as this particle holds it
+  // (odometry_scale.h).
+  double odometry_scale = 1.0;
 };
 
 using ParticleSet = std::vector<Particle>;

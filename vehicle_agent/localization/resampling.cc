@@ -20,7 +20,8 @@ ParticleSet LowVarianceResample(const ParticleSet& particles, size_t count, std:
   for (size_t m = 0; m < count; ++m) {
     const double u = r + static_cast<double>(m) * step;
     while (u > cumulative && i + 1 < particles.size()) cumulative += particles[++i].weight;
-    out.push_back({particles[i].pose, weight});
+    out.push_back(particles[i]);
+    out.back().weight = weight;
   }
   return out;
 }

@@ -8,12 +8,13 @@ using core::YamlReader;
 
 core::Status ReadLocalization(const YamlReader& r, const YAML::Node& n, LocalizerOptions& l) {
   if (!n) return core::OkStatus();
-  FLEETMAP_RETURN_IF_ERROR(
-      CheckKeys(r, n, "localization",
-                {"max_beams", "min_particles", "max_particles", "update_min_translation_m",
-                 "update_min_rotation_rad", "w_avg_model", "external_sigma_xy_m",
-                 "external_sigma_theta_rad", "lost_after_s", "lost_explained_share",
-                 "lost_max_search_period_s", "relocalize_margin", "seed"}));
+  FLEETMAP_RETURN_IF_ERROR(CheckKeys(
+      r, n, "localization",
+      {"max_beams", "min_particles", "max_particles", "update_min_translation_m",
+       "update_min_rotation_rad", "w_avg_model", "external_sigma_xy_m", "external_sigma_theta_rad",
+       "lost_after_s", "lost_explained_share", "lost_max_search_period_s", "relocalize_margin",
+       "odometry_scale_sigma", "odometry_scale_walk_sigma_per_sqrt_m",
+       "odometry_scale_pull_distance_m", "seed"}));
   FLEETMAP_READ_AS(r, int, n, "max_beams", "localization.", l.max_beams);
   FLEETMAP_READ_AS(r, int, n, "min_particles", "localization.", l.kld.min_particles);
   FLEETMAP_READ_AS(r, int, n, "max_particles", "localization.", l.kld.max_particles);
@@ -32,6 +33,12 @@ core::Status ReadLocalization(const YamlReader& r, const YAML::Node& n, Localize
   FLEETMAP_READ_NUMBER(r, n, "lost_max_search_period_s", "localization.",
                        l.lost_max_search_period_s);
   FLEETMAP_READ_NUMBER(r, n, "relocalize_margin", "localization.", l.relocalize_margin);
+  FLEETMAP_READ_NUMBER(r, n, "odometry_scale_sigma", "localization.",
+                       l.odometry_scale.initial_sigma);
+  FLEETMAP_READ_NUMBER(r, n, "odometry_scale_walk_sigma_per_sqrt_m", "localization.",
+                       l.odometry_scale.walk_sigma_per_sqrt_m);
+  FLEETMAP_READ_NUMBER(r, n, "odometry_scale_pull_distance_m", "localization.",
+                       l.odometry_scale.pull_distance_m);
   FLEETMAP_READ_AS(r, uint32_t, n, "seed", "localization.", l.seed);
   return core::OkStatus();
 }

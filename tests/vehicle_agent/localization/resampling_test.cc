@@ -37,6 +37,15 @@ TEST(ResamplingTest, LowVarianceCopiesEachParticleInProportionToItsWeight) {
   EXPECT_TRUE(LowVarianceResample({}, 10, rng).empty());
 }
 
+// A copy is the whole hypothesis: its pose and the odometry scale it holds.
+TEST(ResamplingTest, ACopyKeepsItsOdometryScale) {
+  ParticleSet set = Weighted({0.5, 0.5});
+  set[0].odometry_scale = 0.95, set[1].odometry_scale = 1.04;
+  std::mt19937 rng(4);
+  for (const Particle& p : LowVarianceResample(set, 16, rng))
+    EXPECT_EQ(p.odometry_scale, p.pose.x_m == 0.0 ? 0.95 : 1.04);
+}
+
 TEST(ResamplingTest, EffectiveSampleSizeAndNormalisation) {
   ParticleSet uniform = Weighted({1, 1, 1, 1});
   EXPECT_TRUE(NormalizeWeights(uniform));

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "vehicle_agent/node/agent_flags.h"
 
 namespace fleetmap::vehicle_agent::node {
@@ -28,6 +30,10 @@ TEST(AgentConfigTest, TheShippedExampleHoldsTheDefaults) {
   EXPECT_DOUBLE_EQ(lp.update_min_rotation_rad, ld.update_min_rotation_rad);
   EXPECT_EQ(lp.w_avg_model, ld.w_avg_model);
   EXPECT_EQ(lp.seed, ld.seed);
+  EXPECT_DOUBLE_EQ(lp.odometry_scale.initial_sigma, ld.odometry_scale.initial_sigma);
+  EXPECT_DOUBLE_EQ(lp.odometry_scale.walk_sigma_per_sqrt_m,
+                   ld.odometry_scale.walk_sigma_per_sqrt_m);
+  EXPECT_DOUBLE_EQ(lp.odometry_scale.pull_distance_m, ld.odometry_scale.pull_distance_m);
   const auto& dp = c->node.pipeline.divergence;
   const auto& dd = d.node.pipeline.divergence;
   EXPECT_EQ(dp.rule, dd.rule);
@@ -116,6 +122,23 @@ TEST(AgentConfigTest, DefaultsWithOnlyAVehicleId) {
   auto external = ParseAgentConfig("vehicle_id: v7\ninputs: {external_pose: true}\n", "a.yaml");
   ASSERT_TRUE(external.ok());
   EXPECT_EQ(external->node.initial_pose, InitialPoseSource::kFirstExternal);
+}
+
+TEST(AgentConfigTest, TheOdometrysScaleIsLearntAsSet) {
+  auto c = ParseAgentConfig(
+      "vehicle_id: v7\nlocalization: {odometry_scale_sigma: 0.03, "
+      "odometry_scale_walk_sigma_per_sqrt_m: 0.01, odometry_scale_pull_distance_m: .inf}\n",
+      "a.yaml");
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_TRUE(c->Validate().ok()) << c->Validate().ToString();
+  const OdometryScaleOptions& o = c->node.pipeline.localizer.odometry_scale;
+  EXPECT_DOUBLE_EQ(o.initial_sigma, 0.03);
+  EXPECT_DOUBLE_EQ(o.walk_sigma_per_sqrt_m, 0.01);
+  EXPECT_TRUE(std::isinf(o.pull_distance_m));
+  auto zero = ParseAgentConfig(
+      "vehicle_id: v7\nlocalization: {odometry_scale_pull_distance_m: 0}\n", "a.yaml");
+  ASSERT_TRUE(zero.ok());  // read; refused by the check
+  EXPECT_FALSE(zero->Validate().ok());
 }
 
 TEST(AgentConfigTest, TheMapAtStartUpCanBeSwitchedOn) {
