@@ -21,9 +21,9 @@ core::Status OdometryScaleOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(CheckOption(
       walk_sigma_per_sqrt_m >= 0 && std::isfinite(walk_sigma_per_sqrt_m),
       "OdometryScaleOptions.walk_sigma_per_sqrt_m", walk_sigma_per_sqrt_m, ">= 0 and finite"));
-  FLEETMAP_RETURN_IF_ERROR(CheckOption(pull_distance_m > 0 && !std::isnan(pull_distance_m),
+  FLEETMAP_RETURN_IF_ERROR(CheckOption(pull_distance_m >= 0 && std::isfinite(pull_distance_m),
                                        "OdometryScaleOptions.pull_distance_m", pull_distance_m,
-                                       "> 0 (infinity: no pull)"));
+                                       ">= 0 and finite (0: no pull)"));
   return CheckOption(max_deviation > 0 && max_deviation <= 0.5,
                      "OdometryScaleOptions.max_deviation", max_deviation, "in (0, 0.5]");
 }
@@ -42,7 +42,8 @@ core::Pose2 ScaledIncrement(const core::Pose2& delta_in_base, double scale) {
 double WalkOdometryScale(double scale, double translation_m, const OdometryScaleOptions& options,
                          std::mt19937& rng) {
   if (translation_m <= 0) return scale;
-  scale += (1.0 - scale) * std::min(1.0, translation_m / options.pull_distance_m);
+  if (options.pull_distance_m > 0)
+    scale += (1.0 - scale) * std::min(1.0, translation_m / options.pull_distance_m);
   if (options.walk_sigma_per_sqrt_m <= 0) return scale;
   std::normal_distribution<double> normal(0.0, 1.0);
   return Clamp(scale + options.walk_sigma_per_sqrt_m * std::sqrt(translation_m) * normal(rng),

@@ -27,7 +27,7 @@ struct OdometryScaleOptions {
   // How far a particle's scale wanders per metre driven, standard deviation per sqrt(m),
   // >= 0: keeps a variety of scales in the set after resampling narrowed it.
   double walk_sigma_per_sqrt_m = 0.005;
-  // Distance over which a particle's scale is drawn back to 1, m, > 0 (infinity: never).
+  // Distance over which a particle's scale is drawn back to 1, m, >= 0 (0: never).
   // Where the laser cannot tell the scale (an open hall, a turn on the spot) the walk alone
   // lets the set's scale drift away from the truth, and a drift of a few percent moves the
   // vehicle's pose as much as the scale error it was meant to correct. The pull makes the

@@ -63,7 +63,7 @@ TEST(OdometryScaleTest, AScaleIsPulledBackToOneInProportionToTheDistance) {
   EXPECT_NEAR(WalkOdometryScale(1.1, 30.0, options, rng), 1.05, 1e-12);
   EXPECT_NEAR(WalkOdometryScale(0.9, 6.0, options, rng), 0.91, 1e-12);
   EXPECT_NEAR(WalkOdometryScale(1.1, 600.0, options, rng), 1.0, 1e-12);  // never past 1
-  options.pull_distance_m = INFINITY;
+  options.pull_distance_m = 0.0;                                         // no pull
   EXPECT_EQ(WalkOdometryScale(1.1, 30.0, options, rng), 1.1);
 }
 
@@ -83,9 +83,9 @@ TEST(OdometryScaleTest, OptionsOutOfRangeAreRefused) {
   o.walk_sigma_per_sqrt_m = NAN;
   EXPECT_FALSE(o.Validate().ok());
   o = {};
-  o.pull_distance_m = 0.0;
+  o.pull_distance_m = -1.0;
   EXPECT_FALSE(o.Validate().ok());
-  o.pull_distance_m = NAN;
+  o.pull_distance_m = INFINITY;
   EXPECT_FALSE(o.Validate().ok());
   o = {};
   o.max_deviation = 0.0;

@@ -3,8 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "vehicle_agent/node/agent_flags.h"
 
 namespace fleetmap::vehicle_agent::node {
@@ -127,18 +125,18 @@ TEST(AgentConfigTest, DefaultsWithOnlyAVehicleId) {
 TEST(AgentConfigTest, TheOdometrysScaleIsLearntAsSet) {
   auto c = ParseAgentConfig(
       "vehicle_id: v7\nlocalization: {odometry_scale_sigma: 0.03, "
-      "odometry_scale_walk_sigma_per_sqrt_m: 0.01, odometry_scale_pull_distance_m: .inf}\n",
+      "odometry_scale_walk_sigma_per_sqrt_m: 0.01, odometry_scale_pull_distance_m: 0}\n",
       "a.yaml");
   ASSERT_TRUE(c.ok()) << c.status().ToString();
   EXPECT_TRUE(c->Validate().ok()) << c->Validate().ToString();
   const OdometryScaleOptions& o = c->node.pipeline.localizer.odometry_scale;
   EXPECT_DOUBLE_EQ(o.initial_sigma, 0.03);
   EXPECT_DOUBLE_EQ(o.walk_sigma_per_sqrt_m, 0.01);
-  EXPECT_TRUE(std::isinf(o.pull_distance_m));
-  auto zero = ParseAgentConfig(
-      "vehicle_id: v7\nlocalization: {odometry_scale_pull_distance_m: 0}\n", "a.yaml");
-  ASSERT_TRUE(zero.ok());  // read; refused by the check
-  EXPECT_FALSE(zero->Validate().ok());
+  EXPECT_EQ(o.pull_distance_m, 0.0);  // never pulled back
+  auto negative = ParseAgentConfig(
+      "vehicle_id: v7\nlocalization: {odometry_scale_pull_distance_m: -5}\n", "a.yaml");
+  ASSERT_TRUE(negative.ok());  // read; refused by the check
+  EXPECT_FALSE(negative->Validate().ok());
 }
 
 TEST(AgentConfigTest, TheMapAtStartUpCanBeSwitchedOn) {
