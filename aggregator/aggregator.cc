@@ -57,6 +57,7 @@ core::Status AggregatorOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(alignment.Validate());
   FLEETMAP_RETURN_IF_ERROR(cell_alignment.Validate());
   FLEETMAP_RETURN_IF_ERROR(confidence.Validate());
+  FLEETMAP_RETURN_IF_ERROR(anchor_gate.Validate());
   FLEETMAP_RETURN_IF_ERROR(merge.Validate());
   FLEETMAP_RETURN_IF_ERROR(store.Validate());
   return persistence.Validate();
@@ -106,6 +107,48 @@ Assessment Aggregator::ByCells(const AlignmentInput& in, const std::vector<Eigen
   return c;
 }
 
+void Aggregator::KeepAnchorUnlessProven(const core::TempMap& map, const AlignmentInput& in,
+                                        Assessment& a) const {
+  AlignmentConfidence& c = a.confidence;
+  const AnchorGateVerdict verdict =
+      JudgeCorrection(in.anchor, map.anchor_covariance, a.alignment.correction, c.explained_before,
+                      c.explained_after, options_.anchor_gate);
+  c.anchor_mahalanobis_sq = verdict.mahalanobis_sq;
+  if (verdict.take_correction) return;
+  a.alignment = WithCorrection(in, features_, options_.alignment, core::Pose2());
+  c.anchor_stands = true;
+  c.explained_after = c.explained_before;
+  c.overlap_gain = 0.0;
+  c.explanation = verdict.explanation + (c.explanation.empty() ? "" : " (" + c.explanation + ")");
+  if (c.explained_before < options_.confidence.min_explained_fraction) {
+    c.reason = RejectReason::kLowOverlap;
+    c.score = 0.0;
+    char limit[96];
+    std::snprintf(limit, sizeof(limit), "; there the explained fraction is %.3f < %.3f",
+                  c.explained_before, options_.confidence.min_explained_fraction);
+    c.explanation += limit;
+  }
+}
+
+void Aggregator::StandWhereKnownWell(const core::TempMap& map, const AlignmentInput& in,
+                                     Assessment& a) const {
+  AlignmentConfidence& c = a.confidence;
+  // A place the static map does not explain at the anchor is no place to stand.
+  if (c.reason == RejectReason::kLowOverlap ||
+      c.explained_before < options_.confidence.min_explained_fraction)
+    return;
+  const AnchorGateVerdict verdict =
+      JudgeUnalignedAnchor(map.anchor_covariance, options_.anchor_gate);
+  if (verdict.explanation.empty()) return;
+  a.alignment = WithCorrection(in, features_, options_.alignment, core::Pose2());
+  c.reason = RejectReason::kNone;
+  c.anchor_stands = true;
+  c.anchor_mahalanobis_sq = 0.0;
+  c.explained_after = c.explained_before;
+  c.overlap_gain = 0.0;
+  c.explanation = verdict.explanation + " (" + c.explanation + ")";
+}
+
 void Aggregator::CheckLinesAmongCellPeaks(const AlignmentInput& in, const CellAlignment& cells,
                                           Assessment& lines) const {
   const CellAlignmentOptions& o = options_.cell_alignment;
@@ -145,6 +188,10 @@ Assessment Aggregator::Assess(const core::TempMap& map) const {
   } else if (cells_first) {
     tried.confidence.explanation = "aligned by cells";
   }
+  if (tried.confidence.accepted())
+    KeepAnchorUnlessProven(map, in, tried);
+  else
+    StandWhereKnownWell(map, in, tried);
   a.alignment = std::move(tried.alignment);
   a.confidence = std::move(tried.confidence);
   a.reason = a.confidence.reason;

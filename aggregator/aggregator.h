@@ -15,6 +15,7 @@
 #include <string>
 
 #include "aggregator/alignment/alignment_confidence.h"
+#include "aggregator/alignment/anchor_gate.h"
 #include "aggregator/alignment/placement.h"
 #include "aggregator/alignment/static_features.h"
 #include "aggregator/candidates_seen_free.h"
@@ -34,6 +35,9 @@ struct AggregatorOptions {
   // (too few lines, lines that disagree, a worse fit), or never (docs/aggregator.md).
   CellAlignmentOptions cell_alignment;
   ConfidenceOptions confidence;
+  // An accepted correction the anchor's covariance does not allow, or that does not fit
+  // better, is not taken: the anchor stands (anchor_gate.h).
+  AnchorGateOptions anchor_gate;
   MergeOptions merge;
   StoreOptions store;
   PersistenceOptions persistence;  // used by Open only
@@ -145,8 +149,15 @@ class Aggregator {
                      double before, CellAlignment* cells) const;
   // Where the cells found another pose almost as good, rejects the lines' correction that
   // chose a pose the cells score lower than such a rival (CellAlignmentOptions).
+  // The anchor gate on an accepted assessment: the correction taken, or the anchor standing
+  // (rejected when the static map does not explain enough of the map placed by it).
+  void KeepAnchorUnlessProven(const core::TempMap& map, const AlignmentInput& in,
+                              Assessment& a) const;
   void CheckLinesAmongCellPeaks(const AlignmentInput& in, const CellAlignment& cells,
                                 Assessment& lines) const;
+  // A rejected assessment accepted at the anchor where the vehicle knew it well enough and
+  // the static map explains the map placed there (AnchorGateOptions::stand_max_*).
+  void StandWhereKnownWell(const core::TempMap& map, const AlignmentInput& in, Assessment& a) const;
 
   AggregatorOptions options_;
   StaticMapFeatures features_;

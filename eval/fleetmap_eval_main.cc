@@ -122,8 +122,9 @@ void Progress(double t_s) { std::fprintf(stderr, "  simulated %.0f s\n", t_s); }
 std::string MergeTable(const eval::RunRecord& run, double resolution_m) {
   std::string table =
       "| vehicle | seq | closed (s) | accepted | added | removed | lines | residual x, y (cells), "
-      "theta (deg) | anchor's x, y (cells), theta (deg) | builder's drift (m, deg) | reason |\n"
-      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+      "theta (deg) | anchor's x, y (cells), theta (deg) | builder's drift (m, deg) | "
+      "correction's Mahalanobis², fit gain | reason |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const eval::MergeRecord& m : run.merges) {
     const core::Pose2 e = core::Between(m.true_origin, m.placed_origin);
     const core::Pose2 a = core::Between(m.true_origin, m.anchor_origin);
@@ -137,7 +138,10 @@ std::string MergeTable(const eval::RunRecord& run, double resolution_m) {
     char drift[64] = "-";  // perfect maps and recorded runs do not know it
     if (std::isfinite(m.drift_m))
       std::snprintf(drift, sizeof(drift), "%.3f, %.3f", m.drift_m, m.drift_deg);
-    table += row + std::string(drift) + " | " + m.reason + " |\n";
+    char gate[64] = "-";  // no covariance travelled, or nothing aligned
+    if (std::isfinite(m.correction_mahalanobis_sq) || std::isfinite(m.fit_gain))
+      std::snprintf(gate, sizeof(gate), "%.2f, %.3f", m.correction_mahalanobis_sq, m.fit_gain);
+    table += row + std::string(drift) + " | " + gate + " | " + m.reason + " |\n";
   }
   return table;
 }

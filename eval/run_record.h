@@ -40,6 +40,12 @@ struct MergeRecord {
   // covariance the vehicle sent with the map: e' C^-1 e, on average 3 and below 7.81 for 95 %
   // of maps where the localizer knows how sure it is. NaN where no covariance travelled.
   double anchor_nees = std::nan("");
+  // The aggregator's view of its correction (AlignmentConfidence): how far it moved the anchor
+  // against the anchor's covariance (squared Mahalanobis, NaN without one), and how much more
+  // of the map the static map explains after it than at the anchor. NaN where not aligned.
+  double correction_mahalanobis_sq = std::nan("");
+  double fit_gain = std::nan("");
+  bool anchor_stood = false;  // placed at the anchor, the correction not taken
   std::vector<LineMatchRow> lines;
   int cells_added = 0;
   int cells_removed = 0;

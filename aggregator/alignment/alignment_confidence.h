@@ -6,6 +6,7 @@
 // (the first assumption). A rejected map is never merged (see aggregator.h).
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include "aggregator/alignment/alignment.h"
@@ -64,6 +65,10 @@ struct AlignmentConfidence {
   double prominence = 1.0;    // of the overlap peak (1 when no search was used)
   double distinctness = 1.0;  // of the overlap peak over its rival (1 when no search was used)
   double score = 0.0;         // 0..1, higher is better; for reports and ordering
+  // The correction's move of the anchor against the anchor's covariance (anchor_gate.h); NaN
+  // when the vehicle sent no covariance.
+  double anchor_mahalanobis_sq = NAN;
+  bool anchor_stands = false;  // the correction was not taken: placed where the vehicle put it
   RejectReason reason = RejectReason::kNone;
   std::string explanation;  // for a rejection: what was measured against what limit
   bool accepted() const { return reason == RejectReason::kNone; }

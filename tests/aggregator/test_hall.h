@@ -59,6 +59,22 @@ inline core::OccupancyGrid HallMap(double yaw_rad = 0.0, const std::vector<Box>&
   return grid;
 }
 
+// A corridor 2 m wide along x (walls at y = 8 and 10 m, `wall_half_m` either side), the whole
+// 20 m of the map, with nothing across it: every shift along it fits alike, a shift across it
+// does not. Unknown outside its walls.
+inline core::OccupancyGrid CorridorMap(double wall_half_m) {
+  core::OccupancyGrid grid(core::GridGeometry(kRes, kHallCells, kHallCells));
+  for (int y = 0; y < kHallCells; ++y)
+    for (int x = 0; x < kHallCells; ++x) {
+      const double wy = grid.geometry().CellCenter({x, y}).y();
+      grid.SetState({x, y}, std::abs(wy - 8.0) < wall_half_m || std::abs(wy - 10.0) < wall_half_m
+                                ? core::CellState::kOccupied
+                            : wy > 8.0 && wy < 10.0 ? core::CellState::kFree
+                                                    : core::CellState::kUnknown);
+    }
+  return grid;
+}
+
 inline std::vector<uint8_t> Solid(const core::OccupancyGrid& world) {
   std::vector<uint8_t> solid(world.cells().size());
   for (size_t i = 0; i < solid.size(); ++i) solid[i] = world.cells()[i] > 0;

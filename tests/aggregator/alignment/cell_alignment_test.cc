@@ -127,24 +127,9 @@ TEST_F(CellAlignmentTest, TheAggregatorAlignsALineFreeMapByItsCells) {
   EXPECT_EQ(with->store().version(), 1u);
 }
 
-// A corridor 2 m wide along x, the whole 20 m of the grid, with nothing across it: every
-// shift along it fits alike, a shift across it does not. Unknown outside its walls.
-core::OccupancyGrid Corridor() {
-  core::OccupancyGrid grid(core::GridGeometry(kRes, testing::kHallCells, testing::kHallCells));
-  for (int y = 0; y < testing::kHallCells; ++y)
-    for (int x = 0; x < testing::kHallCells; ++x) {
-      const double wy = grid.geometry().CellCenter({x, y}).y();
-      grid.SetState({x, y}, std::abs(wy - 8.0) < kRes / 2 || std::abs(wy - 10.0) < kRes / 2
-                                ? core::CellState::kOccupied
-                            : wy > 8.0 && wy < 10.0 ? core::CellState::kFree
-                                                    : core::CellState::kUnknown);
-    }
-  return grid;
-}
-
 // Another method's pose is judged by where it scores in the search's window.
 TEST(CellAlignmentRivalTest, APoseAlongACorridorFitsAsTheBestAndOneAcrossItDoesNot) {
-  const core::OccupancyGrid grid = Corridor();
+  const core::OccupancyGrid grid = testing::CorridorMap(kRes / 2);
   auto features = StaticMapFeatures::Compute(grid);
   ASSERT_TRUE(features.ok());
   std::vector<Eigen::Vector2d> walls;  // in the map's frame T, the anchor at (10, 9)
