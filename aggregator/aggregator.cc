@@ -115,11 +115,7 @@ void Aggregator::KeepAnchorUnlessProven(const core::TempMap& map, const Alignmen
                       c.explained_after, options_.anchor_gate);
   c.anchor_mahalanobis_sq = verdict.mahalanobis_sq;
   if (verdict.take_correction) return;
-  a.alignment = WithCorrection(in, features_, options_.alignment, core::Pose2());
-  c.anchor_stands = true;
-  c.explained_after = c.explained_before;
-  c.overlap_gain = 0.0;
-  c.explanation = verdict.explanation + (c.explanation.empty() ? "" : " (" + c.explanation + ")");
+  PlaceAtAnchor(in, verdict.explanation, a);
   if (c.explained_before < options_.confidence.min_explained_fraction) {
     c.reason = RejectReason::kLowOverlap;
     c.score = 0.0;
@@ -140,13 +136,19 @@ void Aggregator::StandWhereKnownWell(const core::TempMap& map, const AlignmentIn
   const AnchorGateVerdict verdict =
       JudgeUnalignedAnchor(map.anchor_covariance, options_.anchor_gate);
   if (verdict.explanation.empty()) return;
-  a.alignment = WithCorrection(in, features_, options_.alignment, core::Pose2());
   c.reason = RejectReason::kNone;
-  c.anchor_stands = true;
   c.anchor_mahalanobis_sq = 0.0;
+  PlaceAtAnchor(in, verdict.explanation, a);
+}
+
+void Aggregator::PlaceAtAnchor(const AlignmentInput& in, const std::string& why,
+                               Assessment& a) const {
+  AlignmentConfidence& c = a.confidence;
+  a.alignment = WithCorrection(in, features_, options_.alignment, core::Pose2());
+  c.anchor_stands = true;
   c.explained_after = c.explained_before;
   c.overlap_gain = 0.0;
-  c.explanation = verdict.explanation + " (" + c.explanation + ")";
+  c.explanation = why + (c.explanation.empty() ? "" : " (" + c.explanation + ")");
 }
 
 void Aggregator::CheckLinesAmongCellPeaks(const AlignmentInput& in, const CellAlignment& cells,

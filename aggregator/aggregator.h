@@ -158,6 +158,9 @@ class Aggregator {
   // A rejected assessment accepted at the anchor where the vehicle knew it well enough and
   // the static map explains the map placed there (AnchorGateOptions::stand_max_*).
   void StandWhereKnownWell(const core::TempMap& map, const AlignmentInput& in, Assessment& a) const;
+  // The assessment's map placed where its vehicle put it (no correction), `why` leading the
+  // explanation.
+  void PlaceAtAnchor(const AlignmentInput& in, const std::string& why, Assessment& a) const;
 
   AggregatorOptions options_;
   StaticMapFeatures features_;

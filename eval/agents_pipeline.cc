@@ -137,7 +137,6 @@ class AgentsPipeline : public Pipeline {
     record.placed_origin = report->correction * map.PlacedGeometry().origin();
     record.correction_mahalanobis_sq = report->confidence.anchor_mahalanobis_sq;
     record.fit_gain = report->confidence.overlap_gain;
-    record.anchor_stood = report->confidence.anchor_stands;
     for (const auto& l : report->lines)
       record.lines.push_back(
           {l.temp_line_id, l.static_line_id, l.distance_diff_px, l.angle_diff_deg});

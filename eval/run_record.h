@@ -45,7 +45,6 @@ struct MergeRecord {
   // of the map the static map explains after it than at the anchor. NaN where not aligned.
   double correction_mahalanobis_sq = std::nan("");
   double fit_gain = std::nan("");
-  bool anchor_stood = false;  // placed at the anchor, the correction not taken
   std::vector<LineMatchRow> lines;
   int cells_added = 0;
   int cells_removed = 0;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/pose_covariance.h"
+
 namespace fleetmap::aggregator {
 namespace {
 
@@ -41,13 +43,10 @@ AnchorGateVerdict JudgeCorrection(const core::Pose2& anchor,
   AnchorGateVerdict v;
   if (!covariance) return v;
   const core::Pose2 placed = correction * anchor;
-  const Eigen::Vector3d move(placed.x_m - anchor.x_m, placed.y_m - anchor.y_m,
-                             core::NormalizeAngle(placed.theta_rad - anchor.theta_rad));
-  Eigen::Matrix3d floored = *covariance;
-  floored.diagonal() +=
-      Eigen::Vector3d(options.floor_sigma_xy_m * options.floor_sigma_xy_m,
-                      options.floor_sigma_xy_m * options.floor_sigma_xy_m,
-                      options.floor_sigma_theta_rad * options.floor_sigma_theta_rad);
+  const Eigen::Vector3d move = core::PoseDifference(placed, anchor);
+  const Eigen::Matrix3d floored =
+      *covariance +
+      core::DiagonalCovariance(options.floor_sigma_xy_m, options.floor_sigma_theta_rad);
   // Floored and symmetric positive semi-definite (checked on arrival): positive definite
   // unless both floors are 0, where a singular covariance keeps the anchor for any move.
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(floored);

@@ -1,6 +1,6 @@
 #include "vehicle_agent/localization/external_pose_track.h"
 
-#include "vehicle_agent/localization/pose_covariance.h"
+#include "core/pose_covariance.h"
 
 namespace fleetmap::vehicle_agent {
 
@@ -47,7 +47,7 @@ core::Pose2 ExternalPoseTrack::Now(const core::Pose2& clean_odom_now) const {
 Eigen::Matrix3d ExternalPoseTrack::Covariance() const {
   const Eigen::Matrix3d& c = pose_.covariance;
   if (c(0, 0) > 0 && c(1, 1) > 0 && c(2, 2) > 0) return c;
-  return DiagonalCovariance(sigma_xy_m_, sigma_theta_rad_);
+  return core::DiagonalCovariance(sigma_xy_m_, sigma_theta_rad_);
 }
 
 }  // namespace fleetmap::vehicle_agent

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/pose_covariance.h"
 #include "vehicle_agent/localization/particle_init.h"
-#include "vehicle_agent/localization/pose_covariance.h"
 #include "vehicle_agent/localization/resampling.h"
 #include "vehicle_agent/localization/scan_endpoints.h"
 
@@ -25,7 +25,7 @@ Localizer::Localizer(const LocalizerOptions& options)
   if (options.w_avg_model == WAvgModel::kBeamModel) beam_model_ = MakeBeamModel(options.beam_model);
   moments_.mean = options.initial_pose_in_map;
   moments_.covariance =
-      DiagonalCovariance(options.initial_sigma_xy_m, options.initial_sigma_theta_rad);
+      core::DiagonalCovariance(options.initial_sigma_xy_m, options.initial_sigma_theta_rad);
   last_estimate_.pose_in_map = moments_.mean;
   last_estimate_.covariance = moments_.covariance;
 }
@@ -45,7 +45,7 @@ core::Status Localizer::SetMap(const core::OccupancyGrid& map, int32_t version) 
   if (options_.initial_pose_mode == InitialPoseMode::kGlobal) return InitializeGlobal();
   return InitializeAt(
       options_.initial_pose_in_map,
-      DiagonalCovariance(options_.initial_sigma_xy_m, options_.initial_sigma_theta_rad));
+      core::DiagonalCovariance(options_.initial_sigma_xy_m, options_.initial_sigma_theta_rad));
 }
 
 core::Status Localizer::UpdateMap(const core::OccupancyGrid& map, int32_t version,
@@ -263,13 +263,13 @@ void Localizer::PredictStep(const core::Pose2& delta) {
 void Localizer::Weigh(LocalizerStats& stats) {
   const bool fuse = external_.TakeFuse();
   const core::Pose2 external = fuse ? ExternalNow() : core::Pose2();
-  const Eigen::Matrix3d information = InformationMatrix(external_.Covariance());
+  const Eigen::Matrix3d information = core::InformationMatrix(external_.Covariance());
   log_weights_.resize(particles_.size());
   double max_log_weight = -std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < particles_.size(); ++i) {
     double lw = field_.LogLikelihood(endpoints_, particles_[i].pose);
     if (fuse) {
-      const Eigen::Vector3d d = PoseDifference(particles_[i].pose, external);
+      const Eigen::Vector3d d = core::PoseDifference(particles_[i].pose, external);
       lw -= 0.5 * d.dot(information * d);  // the external pose as one more measurement
     }
     log_weights_[i] = lw;
@@ -295,8 +295,8 @@ bool Localizer::FuseOrReinitialize() {
   const PoseMoments m = ComputeMoments(particles_);
   const core::Pose2 external = ExternalNow();
   const double gate = options_.external_reinit_mahalanobis;
-  if (SquaredMahalanobis(PoseDifference(m.mean, external), m.covariance + external_.Covariance()) <=
-      gate * gate) {
+  if (core::SquaredMahalanobis(core::PoseDifference(m.mean, external),
+                               m.covariance + external_.Covariance()) <= gate * gate) {
     return false;
   }
   external_.TakeFuse();  // the restart around it is its fusion: not weighed in again

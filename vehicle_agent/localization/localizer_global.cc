@@ -3,9 +3,9 @@
 // by scan (PoseHypotheses) until one leads and the particles start there.
 #include <algorithm>
 
+#include "core/pose_covariance.h"
 #include "vehicle_agent/localization/localizer.h"
 #include "vehicle_agent/localization/particle_init.h"
-#include "vehicle_agent/localization/pose_covariance.h"
 #include "vehicle_agent/localization/scan_endpoints.h"
 
 namespace fleetmap::vehicle_agent {
@@ -50,7 +50,7 @@ void Localizer::RestartAround(const std::vector<GlobalCandidate>& found,
                               const core::LaserScan& scan, const core::Pose2& scanner_in_base,
                               const std::optional<core::Pose2>& held) {
   const Eigen::Matrix3d around =
-      DiagonalCovariance(options_.global_sigma_xy_m, options_.global_sigma_theta_rad);
+      core::DiagonalCovariance(options_.global_sigma_xy_m, options_.global_sigma_theta_rad);
   const int each = std::max(1, options_.kld.max_particles / static_cast<int>(found.size()));
   ParticleSet particles;
   std::vector<PoseHypothesis> seeds;
@@ -109,8 +109,8 @@ void Localizer::FollowHypotheses() {
   const core::Pose2 best = hypotheses_.best().base_in_map;
   const double xy = options_.global_sigma_xy_m, theta = options_.global_sigma_theta_rad;
   if (hypotheses_.decided()) {
-    Restart(
-        SampleAroundPose(best, DiagonalCovariance(xy, theta), options_.kld.max_particles, rng_));
+    Restart(SampleAroundPose(best, core::DiagonalCovariance(xy, theta), options_.kld.max_particles,
+                             rng_));
     return;
   }
   moments_.mean = best;

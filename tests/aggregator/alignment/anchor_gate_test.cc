@@ -5,18 +5,13 @@
 #include <cmath>
 
 #include "aggregator/aggregator.h"
+#include "core/pose_covariance.h"
 #include "tests/aggregator/test_hall.h"
 
 namespace fleetmap::aggregator {
 namespace {
 
 constexpr double kDeg = M_PI / 180;
-
-Eigen::Matrix3d Diagonal(double sigma_xy_m, double sigma_theta_rad) {
-  return Eigen::Vector3d(sigma_xy_m * sigma_xy_m, sigma_xy_m * sigma_xy_m,
-                         sigma_theta_rad * sigma_theta_rad)
-      .asDiagonal();
-}
 
 // The covariance test at the 99 % limit of an honest covariance (off by default).
 AnchorGateOptions Gated() {
@@ -34,7 +29,7 @@ AnchorGateOptions NoFloor() {
 
 TEST(AnchorGateTest, AMoveWithinTheCovarianceIsTakenAndOneBeyondItIsNot) {
   const core::Pose2 anchor(5.0, 3.0, 0.4);
-  const Eigen::Matrix3d c = Diagonal(0.1, 2 * kDeg);
+  const Eigen::Matrix3d c = core::DiagonalCovariance(0.1, 2 * kDeg);
   // 0.2 m along x: two sigmas, squared Mahalanobis 4.
   const AnchorGateVerdict near = JudgeCorrection(anchor, c, {0.2, 0.0, 0.0}, 0.7, 0.8, NoFloor());
   EXPECT_TRUE(near.take_correction);
@@ -50,7 +45,7 @@ TEST(AnchorGateTest, AMoveWithinTheCovarianceIsTakenAndOneBeyondItIsNot) {
 TEST(AnchorGateTest, ATurnMovesTheAnchorAboutTheStaticOrigin) {
   // A correction turning about the static frame's origin moves an anchor far from it.
   const core::Pose2 anchor(10.0, 0.0, 0.0);
-  const Eigen::Matrix3d c = Diagonal(0.1, 5 * kDeg);
+  const Eigen::Matrix3d c = core::DiagonalCovariance(0.1, 5 * kDeg);
   const AnchorGateVerdict v =
       JudgeCorrection(anchor, c, {0.0, 0.0, 1.0 * kDeg}, 0.7, 0.8, NoFloor());
   // The anchor moves 0.175 m across and turns 1 degree.
@@ -59,7 +54,7 @@ TEST(AnchorGateTest, ATurnMovesTheAnchorAboutTheStaticOrigin) {
 
 TEST(AnchorGateTest, TheFloorWidensAnOverconfidentCovariance) {
   const core::Pose2 anchor(1.0, 1.0, 0.0);
-  const Eigen::Matrix3d tight = Diagonal(0.001, 0.001);  // claims a millimetre
+  const Eigen::Matrix3d tight = core::DiagonalCovariance(0.001, 0.001);  // claims a millimetre
   AnchorGateOptions o = Gated();
   o.floor_sigma_xy_m = 0.05;
   EXPECT_TRUE(JudgeCorrection(anchor, tight, {0.05, 0.05, 0.0}, 0.7, 0.8, o).take_correction);
@@ -79,7 +74,7 @@ TEST(AnchorGateTest, ASingularCovarianceWithoutFloorKeepsTheAnchorForAnyMove) {
 TEST(AnchorGateTest, ByDefaultACorrectionThatFitsWorseIsNotTakenWhateverTheCovariance) {
   const AnchorGateOptions o;
   EXPECT_TRUE(std::isinf(o.max_mahalanobis_sq));
-  const Eigen::Matrix3d tight = Diagonal(0.001, 0.001);
+  const Eigen::Matrix3d tight = core::DiagonalCovariance(0.001, 0.001);
   const AnchorGateVerdict far = JudgeCorrection({}, tight, {0.3, 0, 0}, 0.70, 0.70, o);
   EXPECT_TRUE(far.take_correction);     // measured, not tested
   EXPECT_GT(far.mahalanobis_sq, 30.0);  // 0.3 m against the 0.05 m floor
@@ -91,7 +86,7 @@ TEST(AnchorGateTest, ByDefaultACorrectionThatFitsWorseIsNotTakenWhateverTheCovar
 TEST(AnchorGateTest, ACorrectionMustFitBetterByTheMargin) {
   AnchorGateOptions o;
   o.min_explained_gain = 0.02;
-  const Eigen::Matrix3d c = Diagonal(0.1, 2 * kDeg);
+  const Eigen::Matrix3d c = core::DiagonalCovariance(0.1, 2 * kDeg);
   EXPECT_TRUE(JudgeCorrection({}, c, {0.05, 0, 0}, 0.70, 0.73, o).take_correction);
   const AnchorGateVerdict v = JudgeCorrection({}, c, {0.05, 0, 0}, 0.70, 0.71, o);
   EXPECT_FALSE(v.take_correction);
@@ -102,7 +97,8 @@ TEST(AnchorGateTest, WithoutACovarianceOrWhenOffEveryCorrectionIsTaken) {
   EXPECT_TRUE(JudgeCorrection({}, std::nullopt, {5.0, 0, 0}, 0.7, 0.2, {}).take_correction);
   AnchorGateOptions off = Gated();
   off.enabled = false;
-  const AnchorGateVerdict v = JudgeCorrection({}, Diagonal(0.1, 0.01), {0.5, 0, 0}, 0.7, 0.2, off);
+  const AnchorGateVerdict v =
+      JudgeCorrection({}, core::DiagonalCovariance(0.1, 0.01), {0.5, 0, 0}, 0.7, 0.2, off);
   EXPECT_TRUE(v.take_correction);
   EXPECT_NEAR(v.mahalanobis_sq, 25.0 * 0.01 / (0.01 + 0.0025), 1e-9);  // still measured
 }
@@ -111,18 +107,21 @@ TEST(AnchorGateTest, AnUnalignedAnchorStandsOnlyWhereTheVehicleKnewItWell) {
   AnchorGateOptions o;
   o.stand_max_sigma_xy_m = 0.03;
   o.stand_max_sigma_theta_rad = 1.0 * kDeg;
-  const AnchorGateVerdict known = JudgeUnalignedAnchor(Diagonal(0.02, 0.5 * kDeg), o);
+  const AnchorGateVerdict known =
+      JudgeUnalignedAnchor(core::DiagonalCovariance(0.02, 0.5 * kDeg), o);
   EXPECT_NE(known.explanation.find("anchor stands"), std::string::npos);
   EXPECT_NE(known.explanation.find("0.020 m"), std::string::npos) << known.explanation;
-  EXPECT_TRUE(JudgeUnalignedAnchor(Diagonal(0.05, 0.5 * kDeg), o).explanation.empty());
-  EXPECT_TRUE(JudgeUnalignedAnchor(Diagonal(0.02, 2.0 * kDeg), o).explanation.empty());
+  EXPECT_TRUE(
+      JudgeUnalignedAnchor(core::DiagonalCovariance(0.05, 0.5 * kDeg), o).explanation.empty());
+  EXPECT_TRUE(
+      JudgeUnalignedAnchor(core::DiagonalCovariance(0.02, 2.0 * kDeg), o).explanation.empty());
   EXPECT_TRUE(JudgeUnalignedAnchor(std::nullopt, o).explanation.empty());
   // Correlated: each axis within 0.03 m, the long axis of the ellipse 0.039 m.
-  Eigen::Matrix3d correlated = Diagonal(0.028, 0.5 * kDeg);
+  Eigen::Matrix3d correlated = core::DiagonalCovariance(0.028, 0.5 * kDeg);
   correlated(0, 1) = correlated(1, 0) = 0.0007;
   EXPECT_TRUE(JudgeUnalignedAnchor(correlated, o).explanation.empty());
   o.stand_max_sigma_xy_m = 0.0;  // off
-  EXPECT_TRUE(JudgeUnalignedAnchor(Diagonal(0.001, 0.001), o).explanation.empty());
+  EXPECT_TRUE(JudgeUnalignedAnchor(core::DiagonalCovariance(0.001, 0.001), o).explanation.empty());
 }
 
 TEST(AnchorGateTest, OptionsOutOfRangeAreRefused) {
@@ -167,7 +166,7 @@ class AnchorGateHallTest : public ::testing::Test {
 
 TEST_F(AnchorGateHallTest, ACovarianceThatAllowsTheErrorLetsTheCorrectionFixIt) {
   core::TempMap map = testing::BuildTempMap(hall_, spec_);
-  map.anchor_covariance = Diagonal(0.1, 1.5 * kDeg);
+  map.anchor_covariance = core::DiagonalCovariance(0.1, 1.5 * kDeg);
   auto aggregator = Aggregator::Create(hall_, {});
   ASSERT_TRUE(aggregator.ok());
   const Assessment a = aggregator->Assess(map);
@@ -181,7 +180,7 @@ TEST_F(AnchorGateHallTest, ACovarianceThatAllowsTheErrorLetsTheCorrectionFixIt) 
 
 TEST_F(AnchorGateHallTest, ACovarianceThatDeniesTheMoveKeepsTheAnchor) {
   core::TempMap map = testing::BuildTempMap(hall_, spec_);
-  map.anchor_covariance = Diagonal(0.01, 0.1 * kDeg);
+  map.anchor_covariance = core::DiagonalCovariance(0.01, 0.1 * kDeg);
   AggregatorOptions options;
   options.anchor_gate.max_mahalanobis_sq = 11.34;
   options.anchor_gate.floor_sigma_xy_m = 0.01;
@@ -203,7 +202,7 @@ TEST_F(AnchorGateHallTest, AGoodAnchorIsNeverMadeWorse) {
                                    core::Pose2(-0.03, 0.02, -0.004)}) {
     spec_.anchor_error = error;
     core::TempMap map = testing::BuildTempMap(hall_, spec_);
-    map.anchor_covariance = Diagonal(0.03, 0.3 * kDeg);
+    map.anchor_covariance = core::DiagonalCovariance(0.03, 0.3 * kDeg);
     auto aggregator = Aggregator::Create(hall_, {});
     ASSERT_TRUE(aggregator.ok());
     const Assessment a = aggregator->Assess(map);
@@ -220,7 +219,7 @@ TEST(AnchorGateCorridorTest, AMapNoCorrectionCanPlaceStandsAtAWellKnownAnchor) {
   spec.scans = 20;
   spec.grid_m = 8.0;
   core::TempMap map = testing::BuildTempMap(corridor, spec);
-  map.anchor_covariance = Diagonal(0.02, 0.5 * kDeg);
+  map.anchor_covariance = core::DiagonalCovariance(0.02, 0.5 * kDeg);
   AggregatorOptions never;
   never.anchor_gate.stand_max_sigma_xy_m = 0.0;
   auto rejecting = Aggregator::Create(corridor, never);
@@ -236,7 +235,7 @@ TEST(AnchorGateCorridorTest, AMapNoCorrectionCanPlaceStandsAtAWellKnownAnchor) {
   EXPECT_NE(a.reason_text.find("no correction found"), std::string::npos) << a.reason_text;
   EXPECT_NEAR(a.alignment.correction.x_m, 0.0, 1e-12);
   // A vehicle that knew its anchor only to 0.1 m is still refused.
-  map.anchor_covariance = Diagonal(0.1, 0.5 * kDeg);
+  map.anchor_covariance = core::DiagonalCovariance(0.1, 0.5 * kDeg);
   EXPECT_FALSE(standing->Assess(map).accepted());
 }
 

@@ -1,12 +1,13 @@
-// Pose uncertainty as the localizer handles it: Gaussians over (x_m, y_m, theta_rad), the
-// heading difference wrapped so that headings either side of +-pi are close.
+// Pose uncertainty as the localizer, the aggregator and the evaluation handle it: Gaussians over
+// (x_m, y_m, theta_rad), the heading difference wrapped so that headings either side of +-pi are
+// close.
 #pragma once
 
 #include <Eigen/Core>
 
 #include "core/pose2.h"
 
-namespace fleetmap::vehicle_agent {
+namespace fleetmap::core {
 
 // The covariance of independent errors with these standard deviations.
 Eigen::Matrix3d DiagonalCovariance(double sigma_xy_m, double sigma_theta_rad);
@@ -20,4 +21,4 @@ Eigen::Matrix3d InformationMatrix(const Eigen::Matrix3d& cov);
 // d' cov^-1 d (with InformationMatrix's regularisation).
 double SquaredMahalanobis(const Eigen::Vector3d& d, const Eigen::Matrix3d& cov);
 
-}  // namespace fleetmap::vehicle_agent
+}  // namespace fleetmap::core

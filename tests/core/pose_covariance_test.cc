@@ -1,10 +1,10 @@
-#include "vehicle_agent/localization/pose_covariance.h"
+#include "core/pose_covariance.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace fleetmap::vehicle_agent {
+namespace fleetmap::core {
 namespace {
 
 TEST(PoseCovarianceTest, DiagonalCovarianceSquaresTheSigmas) {
@@ -37,4 +37,4 @@ TEST(PoseCovarianceTest, MahalanobisDistanceWeighsEachAxisByItsVariance) {
 }
 
 }  // namespace
-}  // namespace fleetmap::vehicle_agent
+}  // namespace fleetmap::core

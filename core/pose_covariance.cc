@@ -1,8 +1,8 @@
-#include "vehicle_agent/localization/pose_covariance.h"
+#include "core/pose_covariance.h"
 
 #include <Eigen/Dense>
 
-namespace fleetmap::vehicle_agent {
+namespace fleetmap::core {
 
 Eigen::Matrix3d DiagonalCovariance(double sigma_xy_m, double sigma_theta_rad) {
   return Eigen::Vector3d(sigma_xy_m * sigma_xy_m, sigma_xy_m * sigma_xy_m,
@@ -11,7 +11,7 @@ Eigen::Matrix3d DiagonalCovariance(double sigma_xy_m, double sigma_theta_rad) {
 }
 
 Eigen::Vector3d PoseDifference(const core::Pose2& a, const core::Pose2& b) {
-  return {a.x_m - b.x_m, a.y_m - b.y_m, core::NormalizeAngle(a.theta_rad - b.theta_rad)};
+  return {a.x_m - b.x_m, a.y_m - b.y_m, NormalizeAngle(a.theta_rad - b.theta_rad)};
 }
 
 Eigen::Matrix3d InformationMatrix(const Eigen::Matrix3d& cov) {
@@ -22,4 +22,4 @@ double SquaredMahalanobis(const Eigen::Vector3d& d, const Eigen::Matrix3d& cov) 
   return d.dot(InformationMatrix(cov) * d);
 }
 
-}  // namespace fleetmap::vehicle_agent
+}  // namespace fleetmap::core
